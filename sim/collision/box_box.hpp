@@ -1,0 +1,29 @@
+// Box-box contact generation by the separating-axis test (Eberly, "Game Physics", ch. 5;
+// Erleben's thesis pp. 178-183), written for boxpile from the math.
+#pragma once
+
+#include "sim/collision/box.hpp"
+#include "sim/collision/contact.hpp"
+#include "sim/scene.hpp"
+
+namespace boxpile {
+
+// The axis of least penetration found by the separating-axis test.
+struct SatResult {
+  double separation = 0.0;      // > 0: separated by at least this much; <= 0: -depth
+  Vec3 normal = Vec3::UnitZ();  // unit, from B toward A
+  FeatureKind kind = FeatureKind::FaceA;
+  int axis_a = 0;  // face axis of A (FaceA), or A's edge axis (EdgeEdge)
+  int axis_b = 0;  // face axis of B (FaceB), or B's edge axis (EdgeEdge)
+};
+
+// Separating-axis test over the 15 axes: A's 3 face normals, B's 3, and the 9 edge cross products
+// (near-parallel edge pairs skipped). On near-ties faces win over edges (see box_box.cpp).
+SatResult box_box_sat(const OrientedBox& a, const OrientedBox& b);
+
+// The contact set of two boxes: a clipped face polygon (up to 8 points) or one edge-edge point.
+// `out` is cleared first and left empty when the boxes are separated by more than settings.margin.
+void collide_box_box(const OrientedBox& a, const OrientedBox& b, const CollisionSettings& settings,
+                     Manifold& out);
+
+}  // namespace boxpile

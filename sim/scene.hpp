@@ -1,0 +1,90 @@
+// The scene: what every engine (ours, ODE, Bullet) is built from. Plain data; the JSON loader is
+// in sim/io/scene_loader.hpp and the format is documented in docs/scene-format.md.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sim/body.hpp"
+#include "sim/math.hpp"
+
+namespace boxpile {
+
+// The ground half-space: solid where normal . x < offset.
+struct HalfSpace {
+  Vec3 normal = Vec3::UnitZ();  // unit
+  double offset = 0.0;          // m
+};
+
+// Effects a scene asks for. Contact is always on; everything else is simulated only when listed.
+struct Effects {
+  bool gravity = true;
+  bool friction = true;
+  bool restitution = true;
+  bool damping = false;
+  bool gyroscopic = false;  // off unless listed: the mission neglects the gyroscopic term
+};
+
+// Air damping, applied to momenta when the `damping` effect is on: dP = -linear * P dt.
+struct Damping {
+  double linear = 0.0;   // 1/s
+  double angular = 0.0;  // 1/s
+};
+
+struct CollisionSettings {
+  // Reduce each box-box manifold to at most 4 points (deepest first, then largest area).
+  bool reduce_to_four = false;
+  // Points up to this far apart still count as contacts (speculative contacts), m.
+  double margin = 0.0;
+};
+
+enum class ContactSolver { Impulse, Penalty };
+enum class PositionIntegrator { ExplicitEuler, SemiImplicitEuler };
+
+struct SolverSettings {
+  ContactSolver method = ContactSolver::Impulse;
+  int collision_passes = 5;       // GBF collision loop passes (5-10)
+  int contact_passes = 10;        // GBF contact loop passes, restitution ramped -0.9 -> 0 (10-20)
+  bool shock_propagation = true;  // GBF shock propagation after the contact loop
+  PositionIntegrator integrator = PositionIntegrator::ExplicitEuler;
+};
+
+struct TimeSettings {
+  double dt = 1.0 / 240.0;  // s
+  double duration = 5.0;    // s
+};
+
+// One body as the scene file describes it. `frame` is the body frame (where `boxes` are placed);
+// it need not be the centre of mass of a compound.
+struct BodyDesc {
+  std::string name;
+  double mass = 1.0;  // kg; ignored for fixed bodies
+  std::vector<BoxShape> boxes;
+  Pose frame;
+  Vec3 velocity = Vec3::Zero();          // m/s, of the centre of mass
+  Vec3 angular_velocity = Vec3::Zero();  // rad/s, world
+  std::optional<Material> material;      // falls back to the scene default
+  bool fixed = false;
+};
+
+struct Scene {
+  std::string name;
+  std::string note;    // free text: why the scene exists (fixtures say what they test)
+  std::string source;  // the file it was loaded from, for messages
+  Vec3 gravity{0.0, 0.0, -9.81};
+  std::optional<HalfSpace> ground;
+  Material material;
+  Effects effects;
+  Damping damping;
+  std::vector<BodyDesc> bodies;
+  CollisionSettings collision;
+  SolverSettings solver;
+  TimeSettings time;
+  bool allow_initial_overlap = false;
+};
+
+// The simulator's bodies for a scene, in scene order.
+std::vector<RigidBody> make_bodies(const Scene& scene);
+
+}  // namespace boxpile

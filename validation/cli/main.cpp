@@ -1,0 +1,37 @@
+// boxpile: run box-pile scenes in our simulator and in ODE and Bullet, and compare them.
+#include <iostream>
+
+#include "sim/io/input_error.hpp"
+#include "validation/cli/commands.hpp"
+
+int main(int argc, char** argv) {
+  using namespace boxpile::cli;
+  CLI::App app{"boxpile: a pile of boxes in our own simulator, checked against ODE and Bullet"};
+  app.set_version_flag("--version", std::string("boxpile ") + BOXPILE_VERSION);
+  app.require_subcommand(1);
+
+  ContactsOptions contacts;
+  add_contacts_command(app, contacts);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitBadInput;
+  }
+
+  try {
+    if (app.got_subcommand("contacts")) return run_contacts(contacts);
+  } catch (const boxpile::InputError& e) {
+    std::cerr << "boxpile: error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "boxpile: error: " << e.what() << '\n';
+    return kExitFailure;
+  }
+  return kExitFailure;
+}
