@@ -1,0 +1,44 @@
+// One interface for every engine that can run a scene: our simulator, ODE and Bullet. Declared
+// beside the simulator's types so that sim/ knows nothing of ODE or Bullet; the reference
+// adapters in reference/ implement it.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sim/collision/collide.hpp"
+#include "sim/math.hpp"
+
+namespace boxpile {
+
+// A body's state as every engine reports it. `position` and `orientation` are the scene file's
+// body frame (not the centre of mass of a compound); `velocity` is the centre of mass's linear
+// velocity and `angular_velocity` is in world coordinates.
+struct BodyState {
+  std::string name;
+  Vec3 position = Vec3::Zero();
+  Quat orientation = Quat::Identity();
+  Vec3 velocity = Vec3::Zero();
+  Vec3 angular_velocity = Vec3::Zero();
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+
+  // "own", "ode" or "bullet".
+  virtual std::string_view name() const = 0;
+  // Advances the world by one time step of the scene's dt.
+  virtual void step() = 0;
+  // Simulated time since the start, s.
+  virtual double time() const = 0;
+  // Body states in scene order (out is resized; no allocation once it has the size).
+  virtual void body_states(std::vector<BodyState>& out) const = 0;
+  // The contact set the last step used, in the project's convention (midpoint position, normal
+  // from body_b toward body_a, depth > 0 when penetrating); body indices in scene order, kGround
+  // for the ground.
+  virtual void contacts(std::vector<BodyContact>& out) const = 0;
+};
+
+}  // namespace boxpile
