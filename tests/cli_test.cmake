@@ -1,0 +1,70 @@
+# Drives the boxpile executable as a user would and checks exit codes, messages and output.
+# Run by ctest as: cmake -DBOXPILE=... -DFIXTURES=... -DWORK=... -P cli_test.cmake
+cmake_minimum_required(VERSION 3.25)
+
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+
+# run(<name> <expected exit> <must-contain or ""> args...): runs boxpile, checks the exit code
+# and that stdout+stderr contains the text.
+function(run name expected_rc must_contain)
+  execute_process(COMMAND "${BOXPILE}" ${ARGN}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  set(all "${out}${err}")
+  if(NOT rc EQUAL expected_rc)
+    message(SEND_ERROR "${name}: exit ${rc}, expected ${expected_rc}\n${all}")
+  elseif(NOT must_contain STREQUAL "")
+    string(FIND "${all}" "${must_contain}" at)
+    if(at EQUAL -1)
+      message(SEND_ERROR "${name}: output lacks \"${must_contain}\"\n${all}")
+    endif()
+  endif()
+  set(last_out "${out}" PARENT_SCOPE)
+endfunction()
+
+run(version 0 "boxpile 0." --version)
+run(help 0 "contacts" --help)
+run(no_command 2 "")
+run(unknown_flag 2 "--frobnicate" contacts --frobnicate x.json)
+
+# The octagon: a unit box yawed 45 degrees resting 1 cm deep on another.
+file(WRITE "${WORK}/octagon.json" [=[
+{"a": {"half_extents": [0.5, 0.5, 0.5], "position": [0, 0, 0.99],
+       "orientation": [0.9238795325112867, 0, 0, 0.3826834323650898]},
+ "b": {"half_extents": [0.5, 0.5, 0.5], "position": [0, 0, 0], "orientation": [1, 0, 0, 0]}}
+]=])
+run(octagon 0 "" contacts "${WORK}/octagon.json" --engines own)
+string(JSON n LENGTH "${last_out}" engines own contacts)
+if(NOT n EQUAL 8)
+  message(SEND_ERROR "octagon: ${n} contacts, expected 8\n${last_out}")
+endif()
+string(JSON depth GET "${last_out}" engines own contacts 0 depth)
+if(depth LESS 0.0099 OR depth GREATER 0.0101)
+  message(SEND_ERROR "octagon: depth ${depth}, expected 0.01")
+endif()
+run(octagon_reduced 0 "" contacts "${WORK}/octagon.json" --engines own --reduce)
+string(JSON n LENGTH "${last_out}" engines own contacts)
+if(NOT n EQUAL 4)
+  message(SEND_ERROR "octagon --reduce: ${n} contacts, expected 4")
+endif()
+
+# A box on the ground plane: four corners.
+file(WRITE "${WORK}/plane.json" [=[
+{"a": {"half_extents": [0.5, 0.5, 0.5], "position": [0, 0, 0.49]},
+ "b": {"plane": {"normal": [0, 0, 1], "offset": 0}}}
+]=])
+run(plane 0 "" contacts "${WORK}/plane.json" --engines own)
+string(JSON n LENGTH "${last_out}" engines own contacts)
+if(NOT n EQUAL 4)
+  message(SEND_ERROR "plane: ${n} contacts, expected 4")
+endif()
+
+# Bad queries: exit 2, the file and the JSON path named.
+file(WRITE "${WORK}/bad_extent.json" [=[
+{"a": {"half_extents": [0.5, -1, 0.5], "position": [0, 0, 0]},
+ "b": {"plane": {"normal": [0, 0, 1], "offset": 0}}}
+]=])
+run(bad_extent 2 "bad_extent.json: a.half_extents[1]" contacts "${WORK}/bad_extent.json")
+file(WRITE "${WORK}/bad_syntax.json" "{\"a\": {\"half_extents\": [0.5, 0.5 0.5]}}\n")
+run(bad_syntax 2 "line 1" contacts "${WORK}/bad_syntax.json")
+run(missing_file 2 "no_such_query.json" contacts "${WORK}/no_such_query.json")
