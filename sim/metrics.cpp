@@ -1,0 +1,84 @@
+#include "sim/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "sim/collision/box_box.hpp"
+#include "sim/collision/box_plane.hpp"
+#include "sim/collision/broadphase.hpp"
+
+namespace boxpile {
+
+namespace {
+
+double ground_depth(const RigidBody& body, const HalfSpace& ground) {
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < static_cast<int>(body.shapes.size()); ++k)
+    deepest = std::max(deepest, box_plane_depth(OrientedBox::from(body.shape_pose(k), body.shapes[k].half_extents), ground));
+  return deepest;
+}
+
+}  // namespace
+
+Energy measure_energy(const std::vector<RigidBody>& bodies, const Vec3& gravity) {
+  Energy e;
+  for (const RigidBody& b : bodies) {
+    if (b.fixed) continue;
+    e.translational += 0.5 * b.mass * b.v.squaredNorm();
+    e.rotational += 0.5 * b.omega.dot(b.R * b.inertia_body * b.R.transpose() * b.omega);
+    e.potential -= b.mass * gravity.dot(b.x);
+  }
+  return e;
+}
+
+Penetration measure_penetration(const std::vector<RigidBody>& bodies, const std::optional<HalfSpace>& ground) {
+  Penetration worst;
+  const int n = static_cast<int>(bodies.size());
+  for (int i = 0; i < n; ++i) {
+    if (ground && !bodies[i].fixed) {
+      const double d = ground_depth(bodies[i], *ground);
+      if (d > worst.depth) worst = {d, i, kGround};
+    }
+    const Aabb box_i = body_aabb(bodies[i], 0.0);
+    for (int j = i + 1; j < n; ++j) {
+      if (bodies[i].fixed && bodies[j].fixed) continue;
+      if (!box_i.overlaps(body_aabb(bodies[j], 0.0))) continue;
+      const double d = body_pair_depth(bodies[i], bodies[j]);
+      if (d > worst.depth) worst = {d, i, j};
+    }
+  }
+  return worst;
+}
+
+double measure_levitation(const std::vector<RigidBody>& bodies, const std::optional<HalfSpace>& ground,
+                          const Vec3& gravity, double rest_speed) {
+  const Vec3 down = gravity.norm() > 0.0 ? Vec3(gravity.normalized()) : Vec3(-Vec3::UnitZ());
+  double worst = 0.0;
+  for (const RigidBody& b : bodies) {
+    if (b.fixed) continue;
+    const double size = body_aabb(b, 0.0).hi.maxCoeff() - body_aabb(b, 0.0).lo.minCoeff();
+    if (b.v.norm() > rest_speed || b.omega.norm() * size > rest_speed) continue;
+    double gap = std::numeric_limits<double>::infinity();
+    if (ground) gap = -ground_depth(b, *ground);
+    for (const RigidBody& other : bodies) {
+      if (&other == &b || down.dot(other.x - b.x) <= 0.0) continue;  // only supports below
+      gap = std::min(gap, -body_pair_depth(b, other));
+    }
+    if (std::isfinite(gap)) worst = std::max(worst, gap);
+  }
+  return worst;
+}
+
+void set_body_states(std::vector<RigidBody>& bodies, const std::vector<BodyState>& states) {
+  for (std::size_t i = 0; i < bodies.size() && i < states.size(); ++i) {
+    RigidBody& b = bodies[i];
+    const BodyState& s = states[i];
+    b.q = s.orientation.normalized();
+    b.x = s.position - b.q * b.frame_offset;  // frame origin back to the centre of mass
+    b.update_derived();
+    b.set_velocity(s.velocity, s.angular_velocity);
+  }
+}
+
+}  // namespace boxpile

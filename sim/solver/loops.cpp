@@ -1,0 +1,169 @@
+#include "sim/solver/loops.hpp"
+
+#include <algorithm>
+#include <cassert>
+
+namespace boxpile {
+
+void SolverBodies::apply(const SolverContact& c, const Vec3& j, bool a_moves, bool b_moves) {
+  auto push = [](RigidBody& body, const Vec3& impulse, const Vec3& r) {
+    body.P += impulse;
+    body.L += r.cross(impulse);
+    body.v = body.inv_mass * body.P;
+    body.omega = body.inv_inertia_world * body.L;
+  };
+  if (a_moves && !get(c.a).fixed) push(at(c.a), j, c.ra);
+  if (b_moves && c.b >= 0 && !get(c.b).fixed) push(at(c.b), -j, c.rb);
+}
+
+double approach_residual(const SolverBodies& sb, const std::vector<SolverContact>& contacts, double dt) {
+  double worst = 0.0;
+  for (const SolverContact& c : contacts)
+    worst = std::max(worst, allow_gap(c, 0.0, dt) - c.n.dot(sb.relative_velocity(c)));
+  return worst;
+}
+
+void collision_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int passes,
+                    bool restitution, bool friction, double time, double dt, double event_speed,
+                    ImpulseCounters& counters, StepStats& stats, std::vector<CollisionEvent>& events) {
+  assert(passes <= kMaxSolverPasses);
+  const std::size_t first_event = events.size();
+  for (int pass = 0; pass < passes; ++pass) {
+    bool any_active = false;
+    for (SolverContact& c : contacts) {
+      if (!c.active) continue;
+      any_active = true;
+      const Vec3 u = sb.relative_velocity(c);
+      // A point still apart collides only if it would close its gap within the step.
+      if (c.n.dot(u) >= allow_gap(c, 0.0, dt)) continue;
+      const double e = restitution ? c.restitution : 0.0;
+      const Vec3 j = newton_coulomb_impulse(c, c.Ka + c.Kb, u, e, friction, counters);
+      sb.apply(c, j, true, true);
+      const double approach = -c.n.dot(u);
+      if (approach > event_speed) {
+        // One event per pair and step: contacts of a pair are consecutive, so the pair's event,
+        // if any, is among those recorded since the loop began.
+        auto same_pair = [&](const CollisionEvent& ev) { return ev.body_a == c.a && ev.body_b == c.b; };
+        auto it = std::find_if(events.begin() + static_cast<std::ptrdiff_t>(first_event), events.end(), same_pair);
+        if (it == events.end()) {
+          events.push_back({time, c.a, c.b, 0.0, 0.0});
+          it = events.end() - 1;
+        }
+        it->impulse += j.norm();
+        it->approach_speed = std::max(it->approach_speed, approach);
+      }
+    }
+    if (!any_active) break;
+    // Drop the contacts that now separate: they take no part in the coming passes.
+    for (SolverContact& c : contacts)
+      if (c.active && c.n.dot(sb.relative_velocity(c)) >= allow_gap(c, 0.0, dt)) c.active = false;
+    stats.collision_residual[pass] = approach_residual(sb, contacts, dt);
+    stats.collision_passes_used = pass + 1;
+  }
+}
+
+void contact_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int passes, bool friction,
+                  double dt, ImpulseCounters& counters, StepStats& stats) {
+  assert(passes <= kMaxSolverPasses);
+  for (SolverContact& c : contacts) {
+    c.start_un = c.n.dot(sb.relative_velocity(c));
+    c.accumulated.setZero();
+  }
+  for (int pass = 0; pass < passes; ++pass) {
+    // e = -1 would leave velocities unchanged; the ramp starts one step above it and ends at 0,
+    // slowing resting contacts gradually instead of stopping the first one met at full force.
+    // Pass k asks each approaching point for u_n >= -e_k u_n(start).
+    const double e = -1.0 + static_cast<double>(pass + 1) / passes;
+    for (SolverContact& c : contacts) {
+      const double target = allow_gap(c, c.start_un < 0.0 ? -e * c.start_un : 0.0, dt);
+      const Vec3 j = resting_impulse(c, c.Ka + c.Kb, sb.relative_velocity(c), target, friction, counters);
+      sb.apply(c, j, true, true);
+    }
+    stats.contact_residual[pass] = approach_residual(sb, contacts, dt);
+    stats.contact_passes_used = pass + 1;
+  }
+}
+
+void ShockPropagation::run(SolverBodies& sb, std::vector<SolverContact>& contacts, int passes,
+                           bool friction, double dt, ImpulseCounters& counters, StepStats& stats) {
+  const int n = static_cast<int>(sb.bodies.size());
+  auto level_of = [&](int body) { return body < 0 ? -1 : level_[body]; };
+
+  // Contact graph between movable bodies, as compressed adjacency rows.
+  adjacency_start_.assign((n + 1), 0);
+  for (const SolverContact& c : contacts)
+    if (c.b >= 0) {
+      ++adjacency_start_[c.a + 1];
+      ++adjacency_start_[c.b + 1];
+    }
+  for (int i = 0; i < n; ++i) adjacency_start_[i + 1] += adjacency_start_[i];
+  adjacency_.resize(adjacency_start_.back());
+  queue_.assign(adjacency_start_.begin(), adjacency_start_.end() - 1);  // fill cursors
+  for (const SolverContact& c : contacts)
+    if (c.b >= 0) {
+      adjacency_[queue_[c.a]++] = c.b;
+      adjacency_[queue_[c.b]++] = c.a;
+    }
+
+  // Levels by breadth-first search: fixed bodies are -1, bodies touching the ground or a fixed
+  // body are level 0, their neighbours 1, and so on up the pile.
+  level_.assign(n, kUnsupported);
+  queue_.clear();
+  for (int i = 0; i < n; ++i)
+    if (sb.get(i).fixed) level_[i] = -1;
+  for (const SolverContact& c : contacts) {
+    for (const auto& [body, support] : {std::pair{c.a, c.b}, std::pair{c.b, c.a}}) {
+      if (body < 0 || level_of(body) != kUnsupported) continue;
+      if (support < 0 || sb.get(support).fixed) {
+        level_[body] = 0;
+        queue_.push_back(body);
+      }
+    }
+  }
+  for (std::size_t head = 0; head < queue_.size(); ++head) {
+    const int body = queue_[head];
+    for (int k = adjacency_start_[body]; k < adjacency_start_[body + 1]; ++k) {
+      const int next = adjacency_[k];
+      if (level_of(next) != kUnsupported) continue;
+      level_[next] = level_of(body) + 1;
+      queue_.push_back(next);
+    }
+  }
+
+  // Contacts by level: a contact belongs to the higher of its two bodies' levels.
+  int top = -1;
+  for (int i = 0; i < n; ++i)
+    if (level_[i] != kUnsupported) top = std::max(top, level_[i]);
+  level_start_.assign((top + 2), 0);
+  auto contact_level = [&](const SolverContact& c) { return std::max(level_of(c.a), level_of(c.b)); };
+  for (const SolverContact& c : contacts) {
+    const int l = contact_level(c);
+    if (l >= 0 && l != kUnsupported) ++level_start_[l + 1];
+  }
+  for (int l = 0; l <= top; ++l) level_start_[l + 1] += level_start_[l];
+  by_level_.resize(level_start_.back());
+  queue_.assign(level_start_.begin(), level_start_.end() - 1);
+  for (int k = 0; k < static_cast<int>(contacts.size()); ++k) {
+    const int l = contact_level(contacts[k]);
+    if (l >= 0 && l != kUnsupported) by_level_[queue_[l]++] = k;
+  }
+
+  // Solve level by level with e = 0; bodies below the level are frozen (infinite mass), so
+  // nothing pushes back down the pile and the stack's weight is carried by the ground.
+  for (int l = 0; l <= top; ++l) {
+    for (int pass = 0; pass < passes; ++pass) {
+      for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
+        SolverContact& c = contacts[by_level_[k]];
+        const bool a_moves = level_of(c.a) == l;
+        const bool b_moves = level_of(c.b) == l;
+        const Mat3 K = (a_moves ? c.Ka : Mat3::Zero()) + (b_moves ? c.Kb : Mat3::Zero());
+        const Vec3 j = resting_impulse(c, K, sb.relative_velocity(c), allow_gap(c, 0.0, dt), friction, counters);
+        sb.apply(c, j, a_moves, b_moves);
+      }
+    }
+  }
+  stats.shock_levels = top + 1;
+  stats.residual_after_shock = approach_residual(sb, contacts, dt);
+}
+
+}  // namespace boxpile
