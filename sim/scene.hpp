@@ -48,6 +48,10 @@ struct SolverSettings {
   int contact_passes = 10;        // GBF contact loop passes, restitution ramped -0.9 -> 0 (10-20)
   bool shock_propagation = true;  // GBF shock propagation after the contact loop
   PositionIntegrator integrator = PositionIntegrator::ExplicitEuler;
+  // Points this far apart (m) are kept in the step's contact set, so that a resting face whose
+  // corners rise by rounding (1e-17 m) does not lose them and tip; the solver lets such a point
+  // approach by at most its gap in the step (a speculative contact). Suits boxes of 0.1-1 m.
+  double contact_margin = 1e-3;
 };
 
 struct TimeSettings {

@@ -1,0 +1,232 @@
+// Our impulse solver on the fixture scenes, against analytic predictions with stated tolerances.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "sim/io/scene_loader.hpp"
+#include "sim/metrics.hpp"
+#include "sim/world.hpp"
+
+using namespace boxpile;
+using Catch::Matchers::WithinAbs;
+
+namespace {
+
+Scene fixture(const std::string& name) {
+  return load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + name + ".json");
+}
+
+int steps_for(const Scene& s, double seconds) { return static_cast<int>(std::lround(seconds / s.time.dt)); }
+
+void run(World& w, int steps) {
+  for (int k = 0; k < steps; ++k) w.step();
+}
+
+}  // namespace
+
+TEST_CASE("free fall follows x0 + v0 t + g t^2 / 2 within the integrator's error", "[solver]") {
+  for (auto integrator : {PositionIntegrator::ExplicitEuler, PositionIntegrator::SemiImplicitEuler}) {
+    Scene s = fixture("free_fall");
+    s.solver.integrator = integrator;
+    World w(s);
+    const int n = steps_for(s, 1.0);
+    run(w, n);
+    const double t = n * s.time.dt;
+    const Vec3 x0(0, 0, 10), v0(1, 0, 2);
+    const Vec3 exact = x0 + v0 * t + 0.5 * s.gravity * t * t;
+    // Euler's position error in constant gravity is exactly |g| t dt / 2 (the sum of n steps of
+    // g dt^2 k misses g t^2 / 2 by g t dt / 2): too low for explicit, too high for semi-implicit.
+    const double bound = 0.5 * s.gravity.norm() * t * s.time.dt;
+    const double err = (w.bodies()[0].x - exact).norm();
+    CHECK(err <= bound * (1 + 1e-9));
+    CHECK(err >= bound * (1 - 1e-9));
+    CHECK_THAT(w.bodies()[0].v.z(), WithinAbs(v0.z() + s.gravity.z() * t, 1e-9));
+    // Spin about z stays as it was: no torque, gyroscopic term neglected.
+    CHECK_THAT(w.bodies()[0].omega.z(), WithinAbs(1.0, 1e-12));
+  }
+}
+
+TEST_CASE("a box at rest for 10 s neither drifts nor sinks", "[solver]") {
+  const Scene s = fixture("box_at_rest");
+  World w(s);
+  run(w, steps_for(s, 10.0));
+  const RigidBody& b = w.bodies()[0];
+  CHECK(std::abs(b.x.z() - 0.5) < 1e-6);
+  CHECK(b.x.head<2>().norm() < 1e-6);
+  CHECK(measure_penetration(w.bodies(), s.ground).depth < 1e-6);
+}
+
+TEST_CASE("on an incline a box sticks when mu > tan(theta)", "[solver]") {
+  const Scene s = fixture("incline_stick");
+  World w(s);
+  const Vec3 start = w.bodies()[0].x;
+  run(w, steps_for(s, 2.0));
+  CHECK((w.bodies()[0].x - start).norm() < 1e-6);
+}
+
+// Known open defect (issue 4): the box slides 5.7% too far (3.19 m for 3.02 m in 2 s), an
+// effective mu of 0.187 for 0.2. Per-point friction in the sequential resting passes leaves
+// tangential impulses that partly cancel between the corners instead of all opposing the slide.
+TEST_CASE("on an incline a box slides with a = g (sin theta - mu cos theta)", "[solver][!mayfail]") {
+  const Scene s = fixture("incline_slide");
+  World w(s);
+  const Vec3 start = w.bodies()[0].x;
+  const double T = 2.0;
+  run(w, steps_for(s, T));
+  const double theta = std::atan2(-s.ground->normal.x(), s.ground->normal.z());
+  const double mu = s.material.friction;
+  const double a = s.gravity.norm() * (std::sin(theta) - mu * std::cos(theta));
+  const double expected = 0.5 * a * T * T;
+  const double travelled = (w.bodies()[0].x - start).norm();
+  INFO("travelled " << travelled << " m, expected " << expected << " m");
+  CHECK(std::abs(travelled - expected) < 0.02 * expected);
+}
+
+TEST_CASE("a dropped box rebounds to about e^2 h", "[solver]") {
+  const Scene s = fixture("bounce");
+  World w(s);
+  const double h = 1.0;  // drop height of the bottom face
+  const double e = s.material.restitution;
+  double apex = 0.0;
+  bool bounced = false;
+  for (int k = 0; k < steps_for(s, s.time.duration); ++k) {
+    w.step();
+    const RigidBody& b = w.bodies()[0];
+    if (b.v.z() > 0.1) bounced = true;
+    if (bounced) apex = std::max(apex, b.x.z() - 0.5);
+  }
+  REQUIRE(bounced);
+  INFO("apex " << apex << " expected " << e * e * h);
+  // One step of travel at impact speed (sqrt(2 g h) dt = 1.8 cm) bounds how early or late the
+  // impact is caught.
+  CHECK(std::abs(apex - e * e * h) < 0.03);
+  CHECK(w.events().size() >= 1);
+}
+
+TEST_CASE("a stack of 10 stands for 5 s with shock propagation, and falls without", "[solver]") {
+  Scene s = fixture("stack_10");
+  World w(s);
+  run(w, steps_for(s, 5.0));
+  const RigidBody& top = w.bodies().back();
+  CHECK(std::abs(top.x.z() - 9.5) < 1e-4);
+  CHECK(top.x.head<2>().norm() < 1e-4);
+
+  // What shock propagation buys: without it the same passes leave the stack sinking and
+  // sliding by far more than 1e-4 m.
+  s.solver.shock_propagation = false;
+  World without(s);
+  run(without, steps_for(s, 5.0));
+  const RigidBody& top2 = without.bodies().back();
+  const double error = std::max(std::abs(top2.x.z() - 9.5), top2.x.head<2>().norm());
+  WARN("top-of-stack error without shock propagation: " << error << " m");
+  CHECK(error > 1e-2);
+}
+
+TEST_CASE("a heavy box on a light one and a pyramid stay up", "[solver]") {
+  for (const char* name : {"heavy_on_light", "pyramid"}) {
+    const Scene s = fixture(name);
+    World w(s);
+    std::vector<Vec3> start;
+    for (const RigidBody& b : w.bodies()) start.push_back(b.x);
+    run(w, steps_for(s, 5.0));
+    INFO(name);
+    for (std::size_t i = 0; i < start.size(); ++i) CHECK((w.bodies()[i].x - start[i]).norm() < 1e-3);
+  }
+}
+
+TEST_CASE("without restitution and damping, total energy never rises", "[solver]") {
+  // Semi-implicit Euler loses g^2 dt^2 / 2 per step in flight and contacts only take energy
+  // out, so the total may rise by rounding alone: 1e-9 of the potential energy's size
+  // (about 500 J for the stack of 10, where single steps measure rises of 7e-9 J).
+  for (const char* name : {"stack_10", "pyramid", "heavy_on_light"}) {
+    Scene s = fixture(name);
+    s.solver.integrator = PositionIntegrator::SemiImplicitEuler;
+    World w(s);
+    double previous = measure_energy(w.bodies(), s.gravity).total();
+    const double tolerance = 1e-9 * std::max(1.0, std::abs(measure_energy(w.bodies(), s.gravity).potential));
+    double worst_rise = 0.0;
+    for (int k = 0; k < steps_for(s, 2.0); ++k) {
+      w.step();
+      const double e = measure_energy(w.bodies(), s.gravity).total();
+      worst_rise = std::max(worst_rise, e - previous);
+      previous = e;
+    }
+    INFO(name << ": largest rise in one step " << worst_rise << " J");
+    CHECK(worst_rise < tolerance);
+  }
+}
+
+TEST_CASE("the same scene run twice gives bit-identical states", "[solver]") {
+  const Scene s = fixture("pyramid");
+  World a(s), b(s);
+  for (int k = 0; k < 240; ++k) {
+    a.step();
+    b.step();
+  }
+  for (std::size_t i = 0; i < a.bodies().size(); ++i) {
+    CHECK(a.bodies()[i].x == b.bodies()[i].x);
+    CHECK(a.bodies()[i].q.coeffs() == b.bodies()[i].q.coeffs());
+    CHECK(a.bodies()[i].P == b.bodies()[i].P);
+    CHECK(a.bodies()[i].L == b.bodies()[i].L);
+  }
+}
+
+TEST_CASE("a scene pays only for the effects it lists", "[solver][effects]") {
+  Scene s = fixture("stack_5");
+  s.effects = Effects{};
+  s.effects.friction = false;
+  s.effects.restitution = false;
+  s.effects.damping = false;
+  World w(s);
+  run(w, 10);
+  CHECK(w.counters().impulses.friction_evaluations == 0);
+  CHECK(w.counters().damping_applications == 0);
+  CHECK(w.counters().gravity_applications == 10 * 5);
+  CHECK(w.counters().impulses.normal_impulses > 0);
+
+  s.effects.gravity = false;
+  s.effects.friction = true;
+  s.effects.damping = true;
+  World w2(s);
+  run(w2, 10);
+  CHECK(w2.counters().gravity_applications == 0);
+  CHECK(w2.counters().damping_applications == 10 * 5);
+}
+
+TEST_CASE("the broadphase keeps narrowphase work near linear in a spread-out pile", "[solver][broadphase]") {
+  // 1,000 boxes on a 40 x 25 grid, 0.5 m apart: all-pairs would be 499,500 tests.
+  Scene s;
+  s.ground = HalfSpace{};
+  for (int i = 0; i < 1000; ++i) {
+    BodyDesc b;
+    b.name = "b" + std::to_string(i);
+    b.boxes = {BoxShape{Vec3::Constant(0.25), Vec3::Zero(), Quat::Identity()}};
+    b.frame.position = Vec3((i % 40) * 1.0, (i / 40) * 1.0, 0.25);
+    s.bodies.push_back(b);
+  }
+  World w(s);
+  w.step();
+  // Each body meets only the ground: 1000 box-plane tests and no box-box test.
+  CHECK(w.counters().narrowphase_calls == 1000);
+  CHECK(w.counters().broadphase_pairs == 0);
+}
+
+TEST_CASE("a box sliding down an incline does not gain energy", "[solver][!mayfail]") {
+  // Known open defect (issue 4): the resting phase's cone projection with the full collision
+  // matrix lets a sliding box wobble (|omega| up to 2 rad/s after 1 s) and gain up to 0.15 J in a
+  // step. A decoupled normal / tangential-block update removes the wobble but slid 7.5% too far
+  // and loosened resting stacks; the fix is still to be found.
+  Scene s = fixture("incline_slide");
+  s.solver.integrator = PositionIntegrator::SemiImplicitEuler;
+  World w(s);
+  double previous = measure_energy(w.bodies(), s.gravity).total();
+  double worst_rise = 0.0;
+  for (int k = 0; k < steps_for(s, 2.0); ++k) {
+    w.step();
+    const double e = measure_energy(w.bodies(), s.gravity).total();
+    worst_rise = std::max(worst_rise, e - previous);
+    previous = e;
+  }
+  CHECK(worst_rise < 1e-9);
+}
