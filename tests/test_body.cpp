@@ -6,6 +6,8 @@
 #include <sstream>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
 #include "sim/body.hpp"
 #include "sim/scene.hpp"
 
@@ -26,19 +28,20 @@ std::string show(const Mat3& m) {
   return os.str();
 }
 
-void check_near(const Mat3& actual, const Mat3& expected, double tol) {
+void check_mat(const Mat3& actual, const Mat3& expected, double tol) {
   INFO("actual:" << show(actual) << "expected:" << show(expected));
   CHECK((actual - expected).cwiseAbs().maxCoeff() <= tol);
 }
 
-void check_near(const Vec3& actual, const Vec3& expected, double tol) {
+void check_vec(const Vec3& actual, const Vec3& expected, double tol) {
   INFO("actual: " << actual.transpose() << "  expected: " << expected.transpose());
   CHECK((actual - expected).cwiseAbs().maxCoeff() <= tol);
 }
 
 // Same rotation (q and -q are the same rotation).
 void check_same_rotation(const Quat& actual, const Quat& expected, double tol) {
-  INFO("actual: " << actual.coeffs().transpose() << "  expected: " << expected.coeffs().transpose());
+  INFO("actual: " << actual.coeffs().transpose()
+                   << "  expected: " << expected.coeffs().transpose());
   CHECK(std::abs(std::abs(actual.dot(expected)) - 1.0) <= tol);
 }
 
@@ -86,8 +89,8 @@ TEST_CASE("a single box: mass, centre and the cuboid inertia", "[body]") {
   const BoxShape box{Vec3(0.5, 1.0, 1.5), Vec3(0.3, -0.2, 0.1), Quat::Identity()};
   const MassProperties p = compute_mass_properties({box}, 2.0);
   CHECK(p.mass == 2.0);
-  check_near(p.center_of_mass, box.offset, kTight);
-  check_near(p.inertia, cuboid_inertia(2.0, 1.0, 2.0, 3.0), kTight);
+  check_vec(p.center_of_mass, box.offset, kTight);
+  check_mat(p.inertia, cuboid_inertia(2.0, 1.0, 2.0, 3.0), kTight);
 }
 
 TEST_CASE("two equal cubes side by side have the inertia of one box twice as long", "[body]") {
@@ -95,8 +98,8 @@ TEST_CASE("two equal cubes side by side have the inertia of one box twice as lon
       BoxShape{Vec3::Constant(0.5), Vec3(-0.5, 0.0, 0.0), Quat::Identity()},
       BoxShape{Vec3::Constant(0.5), Vec3(0.5, 0.0, 0.0), Quat::Identity()}};
   const MassProperties p = compute_mass_properties(pair, 3.0);
-  check_near(p.center_of_mass, Vec3::Zero(), kTight);
-  check_near(p.inertia, cuboid_inertia(3.0, 2.0, 1.0, 1.0), kTight);
+  check_vec(p.center_of_mass, Vec3::Zero(), kTight);
+  check_mat(p.inertia, cuboid_inertia(3.0, 2.0, 1.0, 1.0), kTight);
 }
 
 TEST_CASE("an asymmetric compound: centre of mass by volume, parallel-axis inertia", "[body]") {
@@ -107,7 +110,7 @@ TEST_CASE("an asymmetric compound: centre of mass by volume, parallel-axis inert
       BoxShape{Vec3::Constant(0.5), Vec3(2.0, 1.0, 0.0), Quat::Identity()}};
   const MassProperties p = compute_mass_properties(boxes, 3.0);
   const Vec3 c(2.0 / 3.0, 1.0 / 3.0, 0.0);
-  check_near(p.center_of_mass, c, kTight);
+  check_vec(p.center_of_mass, c, kTight);
 
   // Worked by hand: d_bar = -c, d_cube = (4/3, 2/3, 0);
   // Ixx = bar 2/12 (1 + 1) + cube 1/12 (1 + 1) + 2 (1/9) + 1 (4/9) = 1/3 + 1/6 + 2/3 = 7/6
@@ -118,10 +121,10 @@ TEST_CASE("an asymmetric compound: centre of mass by volume, parallel-axis inert
   expected << 7.0 / 6.0, -4.0 / 3.0, 0.0,
               -4.0 / 3.0, 11.0 / 3.0, 0.0,
               0.0, 0.0, 13.0 / 3.0;
-  check_near(p.inertia, expected, kTight);
+  check_mat(p.inertia, expected, kTight);
 
   // The same from the volume integral (density 3 kg / 3 m^3).
-  check_near(p.inertia, integrate_inertia(boxes, 1.0, c), 1e-10);
+  check_mat(p.inertia, integrate_inertia(boxes, 1.0, c), 1e-10);
 }
 
 TEST_CASE("a rotated box has the inertia R I R^T", "[body]") {
@@ -129,9 +132,9 @@ TEST_CASE("a rotated box has the inertia R I R^T", "[body]") {
   const BoxShape box{Vec3(0.5, 1.0, 1.5), Vec3(1.0, 2.0, 3.0), q};
   const MassProperties p = compute_mass_properties({box}, 6.0);
   const Mat3 r = q.toRotationMatrix();
-  check_near(p.center_of_mass, box.offset, kTight);
-  check_near(p.inertia, r * cuboid_inertia(6.0, 1.0, 2.0, 3.0) * r.transpose(), kTight);
-  check_near(p.inertia, integrate_inertia({box}, 1.0, box.offset), 1e-10);
+  check_vec(p.center_of_mass, box.offset, kTight);
+  check_mat(p.inertia, r * cuboid_inertia(6.0, 1.0, 2.0, 3.0) * r.transpose(), kTight);
+  check_mat(p.inertia, integrate_inertia({box}, 1.0, box.offset), 1e-10);
 }
 
 TEST_CASE("a compound of rotated, offset boxes matches the volume integral", "[body]") {
@@ -147,10 +150,10 @@ TEST_CASE("a compound of rotated, offset boxes matches the volume integral", "[b
   }
   const double mass = 2.5;
   const MassProperties p = compute_mass_properties(boxes, mass);
-  check_near(p.center_of_mass, moment / volume, kTight);
-  check_near(p.inertia, integrate_inertia(boxes, mass / volume, moment / volume), 1e-10);
+  check_vec(p.center_of_mass, moment / volume, kTight);
+  check_mat(p.inertia, integrate_inertia(boxes, mass / volume, moment / volume), 1e-10);
   // An inertia tensor is symmetric, and each principal moment at most the sum of the other two.
-  check_near(p.inertia, p.inertia.transpose(), kTight);
+  check_mat(p.inertia, p.inertia.transpose(), kTight);
   const Vec3 principal = Eigen::SelfAdjointEigenSolver<Mat3>(p.inertia).eigenvalues();
   CHECK(principal.minCoeff() > 0.0);
   CHECK(principal[2] <= principal[0] + principal[1] + kTight);
@@ -162,28 +165,28 @@ TEST_CASE("set_velocity and update_derived round trip through the momenta", "[bo
   const Vec3 w(-0.7, 0.2, 1.3);
   RigidBody body = make_body("l", l_shape(), 4.0, frame, v, w, Material{}, false);
 
-  check_near(body.v, v, kTight);
-  check_near(body.omega, w, kTight);
+  check_vec(body.v, v, kTight);
+  check_vec(body.omega, w, kTight);
   // P = m v, L = R I_body R^T omega.
-  check_near(body.P, 4.0 * v, kTight);
-  check_near(body.L, body.R * body.inertia_body * body.R.transpose() * w, kTight);
-  check_near(body.inv_inertia_world * (body.R * body.inertia_body * body.R.transpose()),
+  check_vec(body.P, 4.0 * v, kTight);
+  check_vec(body.L, body.R * body.inertia_body * body.R.transpose() * w, kTight);
+  check_mat(body.inv_inertia_world * (body.R * body.inertia_body * body.R.transpose()),
              Mat3::Identity(), kTight);
 
   // Only the momenta are state: recomputing the derived quantities gives the same velocities.
   body.v.setZero();
   body.omega.setZero();
   body.update_derived();
-  check_near(body.v, v, kTight);
-  check_near(body.omega, w, kTight);
+  check_vec(body.v, v, kTight);
+  check_vec(body.omega, w, kTight);
 
   // A new orientation changes the world inertia, so the same L means a different omega.
   body.q = axis_angle(Vec3::UnitX(), 0.5) * body.q;
   body.update_derived();
-  check_near(body.omega, body.inv_inertia_world * body.L, kTight);
-  check_near(body.R * body.R.transpose(), Mat3::Identity(), kTight);
+  check_vec(body.omega, body.inv_inertia_world * body.L, kTight);
+  check_mat(body.R * body.R.transpose(), Mat3::Identity(), kTight);
   // The material velocity of the centre of mass is v.
-  check_near(body.velocity_at(body.x), body.v, kTight);
+  check_vec(body.velocity_at(body.x), body.v, kTight);
 }
 
 TEST_CASE("update_derived renormalises a drifted quaternion", "[body]") {
@@ -192,7 +195,7 @@ TEST_CASE("update_derived renormalises a drifted quaternion", "[body]") {
   body.q = Quat(1.1, 0.0, 0.0, 0.2);
   body.update_derived();
   CHECK(std::abs(body.q.norm() - 1.0) <= kTight);
-  check_near(body.R * body.R.transpose(), Mat3::Identity(), kTight);
+  check_mat(body.R * body.R.transpose(), Mat3::Identity(), kTight);
 }
 
 TEST_CASE("a compound's frame_pose reproduces the scene frame; shapes sit where written",
@@ -205,22 +208,22 @@ TEST_CASE("a compound's frame_pose reproduces the scene frame; shapes sit where 
   // Centre of mass of the L in its frame: the bar (volume 2) at the origin, the cube (volume 1)
   // at (0.5, 0, 1): c = (0.5, 0, 1) / 3. The state x is that point in the world.
   const Vec3 c(1.0 / 6.0, 0.0, 1.0 / 3.0);
-  check_near(body.x, frame.apply(c), kTight);
-  check_near(body.frame_offset, -c, kTight);
+  check_vec(body.x, frame.apply(c), kTight);
+  check_vec(body.frame_offset, -c, kTight);
   check_same_rotation(body.q, frame.orientation, kTight);
 
   const Pose back = body.frame_pose();
-  check_near(back.position, frame.position, kTight);
+  check_vec(back.position, frame.position, kTight);
   check_same_rotation(back.orientation, frame.orientation, kTight);
 
   for (int k = 0; k < 2; ++k) {
     const BoxShape& b = boxes[static_cast<std::size_t>(k)];
     const Pose s = body.shape_pose(k);
-    check_near(s.position, frame.apply(b.offset), kTight);
+    check_vec(s.position, frame.apply(b.offset), kTight);
     check_same_rotation(s.orientation, frame.orientation * b.orientation, kTight);
   }
   // The body inertia is about the centre of mass in the frame's axes.
-  check_near(body.inertia_body, compute_mass_properties(boxes, 2.0).inertia, kTight);
+  check_mat(body.inertia_body, compute_mass_properties(boxes, 2.0).inertia, kTight);
 }
 
 TEST_CASE("a fixed body has infinite mass and does not move", "[body]") {
@@ -245,18 +248,18 @@ TEST_CASE("a fixed body has infinite mass and does not move", "[body]") {
 
 TEST_CASE("make_bodies builds every body in order, materials falling back to the scene's",
           "[body]") {
+  const auto cube = [](const char* name, double z) {
+    BodyDesc d;
+    d.name = name;
+    d.boxes = {BoxShape{}};
+    d.frame.position = Vec3(0.0, 0.0, z);
+    return d;
+  };
   Scene scene;
   scene.material = Material{0.8, 0.1};
-  BodyDesc a;
-  a.name = "a";
-  a.boxes = {BoxShape{}};
-  a.frame.position = Vec3(0.0, 0.0, 0.5);
-  BodyDesc b = a;
-  b.name = "b";
-  b.frame.position = Vec3(0.0, 0.0, 1.5);
-  b.material = Material{0.2, 0.0};
-  b.mass = 3.0;
-  scene.bodies = {a, b};
+  scene.bodies = {cube("a", 0.5), cube("b", 1.5)};
+  scene.bodies[1].material = Material{0.2, 0.0};
+  scene.bodies[1].mass = 3.0;
 
   const std::vector<RigidBody> bodies = make_bodies(scene);
   REQUIRE(bodies.size() == 2);
@@ -266,5 +269,5 @@ TEST_CASE("make_bodies builds every body in order, materials falling back to the
   CHECK(bodies[1].name == "b");
   CHECK(bodies[1].material.friction == 0.2);
   CHECK(bodies[1].mass == 3.0);
-  check_near(bodies[1].x, Vec3(0.0, 0.0, 1.5), kTight);
+  check_vec(bodies[1].x, Vec3(0.0, 0.0, 1.5), kTight);
 }

@@ -223,7 +223,9 @@ TEST_CASE("a stack written in decimal loads: touching is not overlapping", "[sce
   json scene = base_scene();
   scene["bodies"] = json::array();
   for (int k = 0; k < 10; ++k) {
-    scene["bodies"].push_back({{"name", "b" + std::to_string(k)}, {"mass", 0.1},
+    std::string name = "b";
+    name += std::to_string(k);
+    scene["bodies"].push_back({{"name", name}, {"mass", 0.1},
                                {"half_extents", {0.3, 0.3, 0.05}},
                                {"position", {0.1 * 3, 0.7, 0.05 + 0.1 * k}}});
   }
@@ -274,7 +276,7 @@ TEST_CASE("the fixture scenes load", "[scene]") {
 // Bad scenes: every case names the file, the JSON path and what is wrong
 
 TEST_CASE("JSON syntax errors give line and column", "[scene]") {
-  check_scene_error("{\n  \"name\": \"x\",\n  \"bodies\": [1, 2,,]\n}", "", "line 3, column 18");
+  check_scene_error("{\n  \"name\": \"x\",\n  \"bodies\": [1, 2,,]\n}", "", "line 3, column 19");
   check_scene_error("{\n  \"name\": tru\n}", "", "line 2, column 14");
   check_scene_error("{\"name\": \"x\"", "", "line 1, column 13");  // input ends early
   check_scene_error("", "", "line 1, column 1");

@@ -70,13 +70,13 @@ struct ClipPolygon {
 ClipPolygon clip(const ClipPolygon& in, const Vec3& u, double h, int plane) {
   ClipPolygon out;
   for (int k = 0; k < in.n; ++k) {
-    const ClipPoint& cur = in.pts[static_cast<std::size_t>(k)];
-    const ClipPoint& next = in.pts[static_cast<std::size_t>((k + 1) % in.n)];
+    const ClipPoint& cur = in.pts[k];
+    const ClipPoint& next = in.pts[(k + 1) % in.n];
     const double dc = u.dot(cur.p) - h;
     const double dn = u.dot(next.p) - h;
     if (dc <= 0.0) {
       // The edge leaving cur keeps its tag unless it exits through the plane below.
-      out.pts[static_cast<std::size_t>(out.n++)] = {cur.p, cur.sub, cur.edge_tag};
+      out.pts[out.n++] = {cur.p, cur.sub, cur.edge_tag};
     }
     if ((dc <= 0.0) != (dn <= 0.0)) {
       const double s = dc / (dc - dn);
@@ -85,10 +85,10 @@ ClipPolygon clip(const ClipPolygon& in, const Vec3& u, double h, int plane) {
                                        : 20 + 4 * (cur.edge_tag - 4) + plane;
       if (dc <= 0.0) {
         // Exiting: the kept edge now ends at x, and the polygon continues along the plane.
-        out.pts[static_cast<std::size_t>(out.n++)] = {x, sub, 4 + plane};
+        out.pts[out.n++] = {x, sub, 4 + plane};
       } else {
         // Entering: from x on, the polygon follows cur's edge.
-        out.pts[static_cast<std::size_t>(out.n++)] = {x, sub, cur.edge_tag};
+        out.pts[out.n++] = {x, sub, cur.edge_tag};
       }
     }
   }
@@ -144,7 +144,7 @@ void face_contacts(const OrientedBox& ref, const OrientedBox& inc, int ref_axis,
   const Vec3 normal = ref_is_a ? Vec3(-m) : m;  // from B toward A
   const FeatureKind kind = ref_is_a ? FeatureKind::FaceA : FeatureKind::FaceB;
   for (int k = 0; k < poly.n; ++k) {
-    const ClipPoint& cp = poly.pts[static_cast<std::size_t>(k)];
+    const ClipPoint& cp = poly.pts[k];
     const double depth = h_ref - m.dot(cp.p);
     if (depth < -settings.margin) continue;
     const FeatureId id = ref_is_a ? FeatureId::make(kind, ref_face, inc_face, cp.sub)

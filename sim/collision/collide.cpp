@@ -10,7 +10,7 @@ namespace boxpile {
 namespace {
 
 OrientedBox world_box(const RigidBody& body, int shape) {
-  return OrientedBox::from(body.shape_pose(shape), body.shapes[static_cast<std::size_t>(shape)].half_extents);
+  return OrientedBox::from(body.shape_pose(shape), body.shapes[shape].half_extents);
 }
 
 void append(const Manifold& m, int ia, int ib, int sa, int sb, std::vector<BodyContact>& out) {
@@ -21,8 +21,8 @@ void append(const Manifold& m, int ia, int ib, int sa, int sb, std::vector<BodyC
 
 void collide_bodies(const std::vector<RigidBody>& bodies, int ia, int ib,
                     const CollisionSettings& settings, std::vector<BodyContact>& out) {
-  const RigidBody& a = bodies[static_cast<std::size_t>(ia)];
-  const RigidBody& b = bodies[static_cast<std::size_t>(ib)];
+  const RigidBody& a = bodies[ia];
+  const RigidBody& b = bodies[ib];
   Manifold m;
   for (int sa = 0; sa < static_cast<int>(a.shapes.size()); ++sa) {
     const OrientedBox box_a = world_box(a, sa);
@@ -36,7 +36,7 @@ void collide_bodies(const std::vector<RigidBody>& bodies, int ia, int ib,
 
 void collide_body_ground(const std::vector<RigidBody>& bodies, int ia, const HalfSpace& ground,
                          const CollisionSettings& settings, std::vector<BodyContact>& out) {
-  const RigidBody& a = bodies[static_cast<std::size_t>(ia)];
+  const RigidBody& a = bodies[ia];
   Manifold m;
   for (int sa = 0; sa < static_cast<int>(a.shapes.size()); ++sa) {
     m.clear();

@@ -63,10 +63,10 @@ class Manifold {
   void clear() { count_ = 0; }
   void push_back(const Contact& c) {
     assert(count_ < kMaxManifoldPoints);
-    points_[static_cast<std::size_t>(count_++)] = c;
+    points_[(count_++)] = c;
   }
-  const Contact& operator[](int i) const { return points_[static_cast<std::size_t>(i)]; }
-  Contact& operator[](int i) { return points_[static_cast<std::size_t>(i)]; }
+  const Contact& operator[](int i) const { return points_[i]; }
+  Contact& operator[](int i) { return points_[i]; }
   const Contact* begin() const { return points_.data(); }
   const Contact* end() const { return points_.data() + count_; }
   Contact* begin() { return points_.data(); }

@@ -13,7 +13,7 @@ int best_point(const Manifold& m, const std::array<bool, kMaxManifoldPoints>& ta
   int best = -1;
   double best_score = -1.0;
   for (int i = 0; i < m.size(); ++i) {
-    if (taken[static_cast<std::size_t>(i)]) continue;
+    if (taken[i]) continue;
     const double s = score(m[i].position);
     if (s > best_score) {
       best_score = s;
@@ -35,18 +35,18 @@ void reduce_to_four(Manifold& m) {
   keep[0] = 0;
   for (int i = 1; i < m.size(); ++i)
     if (m[i].depth > m[keep[0]].depth) keep[0] = i;
-  taken[static_cast<std::size_t>(keep[0])] = true;
+  taken[keep[0]] = true;
   const Vec3 p0 = m[keep[0]].position;
 
   // 2. The farthest point from it, measured in the contact plane.
   auto in_plane = [&](const Vec3& d) { return d - n.dot(d) * n; };
   keep[1] = best_point(m, taken, [&](const Vec3& p) { return in_plane(p - p0).squaredNorm(); });
-  taken[static_cast<std::size_t>(keep[1])] = true;
+  taken[keep[1]] = true;
   const Vec3 p1 = m[keep[1]].position;
 
   // 3. The point spanning the largest triangle with the first two (twice its area: |e x f|).
   keep[2] = best_point(m, taken, [&](const Vec3& p) { return std::abs(n.dot((p1 - p0).cross(p - p0))); });
-  taken[static_cast<std::size_t>(keep[2])] = true;
+  taken[keep[2]] = true;
   const Vec3 p2 = m[keep[2]].position;
 
   // 4. The point adding the most area: outside the triangle, the largest signed triangle it forms

@@ -1,0 +1,452 @@
+#include "sim/io/json_input.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <set>
+#include <vector>
+
+namespace boxpile::json_input {
+namespace {
+
+using nlohmann::json;
+
+// A candidate counts as a plausible typo when its edit distance is at most a third of its length
+// (at least 1): "half_extent" -> "half_extents", "gravty" -> "gravity", but "zzz" suggests nothing
+// and the message lists the valid names instead.
+constexpr std::size_t kTypoLengthPerEdit = 3;
+
+// A quaternion or direction whose norm is below this was written as zero: its direction would be
+// decided by the rounding of the user's digits, not by the user. Real input has norm ~1.
+constexpr double kMinNormalisableNorm = 1e-6;
+
+// Long string values are cut to this many characters when quoted in a message.
+constexpr std::size_t kMaxQuotedChars = 40;
+
+std::string quoted_list(std::span<const std::string_view> names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + in_quotes(names[i]);
+  return out;
+}
+
+// "number 5", "string \"abc\"", "array": what a value is, for "expected X, got Y".
+std::string describe(const json& value) {
+  switch (value.type()) {
+    case json::value_t::string: {
+      std::string s = value.get<std::string>();
+      if (s.size() > kMaxQuotedChars) s = s.substr(0, kMaxQuotedChars) + "...";
+      return "string " + in_quotes(s);
+    }
+    case json::value_t::number_float:
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+    case json::value_t::boolean:
+      return std::string(value.type_name()) + " " + value.dump();
+    default:
+      return value.type_name();
+  }
+}
+
+std::string append_key(const std::string& path, std::string_view key) {
+  return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+
+std::string append_index(const std::string& path, std::size_t i) {
+  return path + "[" + std::to_string(i) + "]";
+}
+
+// Follows the parser's events to know the JSON path of the value being read, which nlohmann does
+// not report, and to catch a key given twice in one object, which nlohmann silently collapses.
+class PathTracker {
+ public:
+  explicit PathTracker(std::string source) : source_(std::move(source)) {}
+
+  bool on_event(json::parse_event_t event, const json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        begin_value();
+        frames_.push_back({true, {}, {}, 0});
+        break;
+      case json::parse_event_t::array_start:
+        begin_value();
+        frames_.push_back({false, {}, {}, 0});
+        break;
+      case json::parse_event_t::value:
+        begin_value();
+        break;
+      case json::parse_event_t::key:
+        on_key(parsed.get<std::string>());
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        break;
+    }
+    return true;  // keep every value
+  }
+
+  // The path of the value the parser has most recently begun. With `pending`, the path of the
+  // value it is reading now but has not reported yet (a number that failed to convert).
+  std::string path(bool pending = false) const {
+    std::string out;
+    for (std::size_t k = 0; k < frames_.size(); ++k) {
+      const Frame& f = frames_[k];
+      const bool next = pending && k + 1 == frames_.size();
+      out = f.is_object ? append_key(out, f.key)
+                        : append_index(out, next ? f.elements_started : f.elements_started - 1);
+    }
+    return out;
+  }
+
+ private:
+  struct Frame {
+    bool is_object = true;
+    std::set<std::string> keys;    // objects: keys seen so far
+    std::string key;               // objects: the key being read
+    std::size_t elements_started;  // arrays: how many elements have begun
+  };
+
+  // An array's index moves on when its next element begins; object members go by their key.
+  void begin_value() {
+    if (!frames_.empty() && !frames_.back().is_object) {
+      ++frames_.back().elements_started;
+    }
+  }
+
+  void on_key(const std::string& key) {
+    Frame& f = frames_.back();
+    f.key = key;
+    if (!f.keys.insert(key).second) {
+      throw InputError(source_, path(),
+                       "duplicate key " + in_quotes(key) + ": JSON would keep only the last one");
+    }
+  }
+
+  std::string source_;
+  std::vector<Frame> frames_;
+};
+
+// Where a byte offset lies in the text, as people count: line and column from 1.
+struct TextPosition {
+  std::size_t line = 1;
+  std::size_t column = 1;
+};
+
+TextPosition position_of(const std::string& text, std::size_t byte) {
+  // nlohmann's parse_error::byte is the 1-based index of the last character read (one past the
+  // end when the input ran out); make it a 0-based index into the text.
+  const std::size_t pos = std::min(byte == 0 ? 0 : byte - 1, text.size());
+  TextPosition p;
+  std::size_t line_start = 0;
+  for (std::size_t i = 0; i < pos; ++i) {
+    if (text[i] == '\n') {
+      ++p.line;
+      line_start = i + 1;
+    }
+  }
+  // Columns count characters, not bytes: skip UTF-8 continuation bytes (10xxxxxx).
+  for (std::size_t i = line_start; i < pos; ++i) {
+    if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) ++p.column;
+  }
+  return p;
+}
+
+// nlohmann's explanation without its own "[json.exception...] parse error at ...: " prefix, which
+// counts lines differently from us, and without a leading "syntax error" we already say.
+std::string syntax_detail(const std::string& what) {
+  std::string detail = what;
+  if (const auto col = detail.find("column "); col != std::string::npos) {
+    if (const auto colon = detail.find(": ", col); colon != std::string::npos) {
+      detail = detail.substr(colon + 2);
+    }
+  } else if (const auto bracket = detail.find("] "); bracket != std::string::npos) {
+    detail = detail.substr(bracket + 2);
+  }
+  constexpr std::string_view kPrefix = "syntax error ";
+  if (detail.starts_with(kPrefix)) detail = detail.substr(kPrefix.size());
+  return detail;
+}
+
+// nlohmann's exception id for a number literal that does not fit a double (e.g. 1e999).
+constexpr int kNumberOverflowId = 406;
+
+}  // namespace
+
+std::string read_text_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(path, "", "cannot open: it is a directory");
+  }
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                              &std::fclose);
+  if (!file) throw InputError(path, "", std::string("cannot open: ") + std::strerror(errno));
+  std::string text;
+  char buffer[1 << 16];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
+  if (std::ferror(file.get())) {
+    throw InputError(path, "", std::string("cannot read: ") + std::strerror(errno));
+  }
+  return text;
+}
+
+json parse(const std::string& text, const std::string& source) {
+  PathTracker tracker(source);
+  try {
+    return json::parse(text, [&tracker](int, json::parse_event_t event, json& parsed) {
+      return tracker.on_event(event, parsed);
+    });
+  } catch (const json::parse_error& e) {
+    const TextPosition p = position_of(text, e.byte);
+    throw InputError(source, "",
+                     "JSON syntax error at line " + std::to_string(p.line) + ", column " +
+                         std::to_string(p.column) + ": " + syntax_detail(e.what()));
+  } catch (const json::out_of_range& e) {
+    // The tracker has not yet seen the value that failed: it is the pending one.
+    throw InputError(source, tracker.path(true),
+                     e.id == kNumberOverflowId ? "number out of range: must be finite" : e.what());
+  }
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  // Optimal string alignment distance (Damerau's transposition added to Levenshtein's dynamic
+  // programme over prefixes): d[i][j] is the distance between a[0, i) and b[0, j).
+  const std::size_t n = a.size(), m = b.size();
+  std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1, 0));
+  for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= n; ++i) {
+    for (std::size_t j = 1; j <= m; ++j) {
+      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      }
+    }
+  }
+  return d[n][m];
+}
+
+std::optional<std::string_view> closest_match(std::string_view word,
+                                              std::span<const std::string_view> candidates) {
+  std::optional<std::string_view> best;
+  std::size_t best_distance = std::numeric_limits<std::size_t>::max();
+  for (std::string_view c : candidates) {
+    const std::size_t d = edit_distance(word, c);
+    const std::size_t allowed = std::max<std::size_t>(1, c.size() / kTypoLengthPerEdit);
+    if (d <= allowed && d < best_distance) {
+      best = c;
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
+std::string in_quotes(std::string_view s) {
+  std::string out;
+  out.reserve(s.size() + 2);
+  out.append(1, '"').append(s).append(1, '"');
+  return out;
+}
+
+std::string format_number(double x) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, result.ptr);
+}
+
+// ---------------------------------------------------------------------------------------------
+// JsonNode
+
+JsonNode::JsonNode(const nlohmann::json& root, std::string source)
+    : JsonNode(root, std::move(source), "") {}
+
+JsonNode::JsonNode(const nlohmann::json& value, std::string source, std::string path)
+    : value_(&value), source_(std::move(source)), path_(std::move(path)) {}
+
+void JsonNode::fail(const std::string& what) const { throw InputError(source_, path_, what); }
+
+void JsonNode::fail_type(std::string_view expected) const {
+  fail("expected " + std::string(expected) + ", got " + describe(*value_));
+}
+
+JsonNode JsonNode::child(std::string_view key) const {
+  return JsonNode(value_->find(key).value(), source_, append_key(path_, key));
+}
+
+void JsonNode::expect_object(std::initializer_list<std::string_view> allowed) const {
+  if (!value_->is_object()) fail_type("object");
+  const std::span<const std::string_view> names(allowed.begin(), allowed.size());
+  for (const auto& item : value_->items()) {
+    const std::string& key = item.key();
+    if (std::find(names.begin(), names.end(), key) != names.end()) continue;
+    if (const auto guess = closest_match(key, names)) {
+      fail("unknown key " + in_quotes(key) + "; did you mean " + in_quotes(*guess) + "?");
+    }
+    fail("unknown key " + in_quotes(key) + "; valid keys are " + quoted_list(names));
+  }
+}
+
+bool JsonNode::has(std::string_view key) const {
+  return value_->is_object() && value_->contains(key);
+}
+
+JsonNode JsonNode::at(std::string_view key) const {
+  if (!value_->is_object()) fail_type("object");
+  if (!value_->contains(key)) fail("missing required key " + in_quotes(key));
+  return child(key);
+}
+
+std::optional<JsonNode> JsonNode::find(std::string_view key) const {
+  if (!value_->is_object()) fail_type("object");
+  if (!value_->contains(key)) return std::nullopt;
+  return child(key);
+}
+
+std::size_t JsonNode::array_size() const {
+  if (!value_->is_array()) fail_type("array");
+  return value_->size();
+}
+
+void JsonNode::expect_array_size(std::size_t n) const {
+  const std::size_t size = array_size();
+  if (size != n) {
+    fail("expected an array of " + std::to_string(n) + " elements, got " + std::to_string(size));
+  }
+}
+
+JsonNode JsonNode::element(std::size_t i) const {
+  if (i >= array_size()) fail("has no element " + std::to_string(i));
+  return JsonNode((*value_)[i], source_, append_index(path_, i));
+}
+
+double JsonNode::number() const {
+  if (!value_->is_number()) fail_type("number");
+  const double x = value_->get<double>();
+  if (!std::isfinite(x)) fail("must be finite, got " + format_number(x));
+  return x;
+}
+
+int JsonNode::integer() const {
+  constexpr auto kMin = std::numeric_limits<int>::min();
+  constexpr auto kMax = std::numeric_limits<int>::max();
+  if (value_->is_number_unsigned()) {
+    const auto u = value_->get<std::uint64_t>();
+    if (u > static_cast<std::uint64_t>(kMax)) fail("integer out of range: " + value_->dump());
+    return static_cast<int>(u);
+  }
+  if (value_->is_number_integer()) {
+    const auto i = value_->get<std::int64_t>();
+    if (i < kMin || i > kMax) fail("integer out of range: " + value_->dump());
+    return static_cast<int>(i);
+  }
+  if (!value_->is_number()) fail_type("integer");
+  const double x = number();
+  if (x != std::floor(x) || x < kMin || x > kMax) {
+    fail("expected an integer, got " + describe(*value_));
+  }
+  return static_cast<int>(x);
+}
+
+bool JsonNode::boolean() const {
+  if (!value_->is_boolean()) fail_type("boolean");
+  return value_->get<bool>();
+}
+
+std::string JsonNode::string() const {
+  if (!value_->is_string()) fail_type("string");
+  return value_->get<std::string>();
+}
+
+std::size_t JsonNode::choice(std::span<const std::string_view> names, std::string_view what) const {
+  const std::string s = string();
+  const auto it = std::find(names.begin(), names.end(), s);
+  if (it != names.end()) return static_cast<std::size_t>(it - names.begin());
+  const std::string head = "unknown " + std::string(what) + " " + in_quotes(s);
+  if (const auto guess = closest_match(s, names)) {
+    fail(head + "; did you mean " + in_quotes(*guess) + "?");
+  }
+  fail(head + "; expected one of " + quoted_list(names));
+}
+
+double JsonNode::number_or(std::string_view key, double fallback) const {
+  const auto node = find(key);
+  return node ? node->number() : fallback;
+}
+
+int JsonNode::integer_or(std::string_view key, int fallback) const {
+  const auto node = find(key);
+  return node ? node->integer() : fallback;
+}
+
+bool JsonNode::boolean_or(std::string_view key, bool fallback) const {
+  const auto node = find(key);
+  return node ? node->boolean() : fallback;
+}
+
+std::string JsonNode::string_or(std::string_view key, std::string fallback) const {
+  const auto node = find(key);
+  return node ? node->string() : std::move(fallback);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shared value readers
+
+Vec3 read_vec3(const JsonNode& node) {
+  node.expect_array_size(3);
+  return {node.element(0).number(), node.element(1).number(), node.element(2).number()};
+}
+
+Vec3 read_half_extents(const JsonNode& node) {
+  node.expect_array_size(3);
+  return {read_positive(node.element(0)), read_positive(node.element(1)),
+          read_positive(node.element(2))};
+}
+
+Quat read_orientation(const JsonNode& node) {
+  node.expect_array_size(4);
+  // JSON quaternions are [w, x, y, z]; Eigen's constructor takes them in that order too.
+  const Quat q(node.element(0).number(), node.element(1).number(), node.element(2).number(),
+               node.element(3).number());
+  if (q.norm() < kMinNormalisableNorm) {
+    node.fail("zero quaternion (norm " + format_number(q.norm()) +
+              ") is not a rotation; [w, x, y, z] = [1, 0, 0, 0] is the identity");
+  }
+  return q.normalized();
+}
+
+Vec3 read_direction(const JsonNode& node) {
+  const Vec3 d = read_vec3(node);
+  if (d.norm() < kMinNormalisableNorm) {
+    node.fail("zero vector (norm " + format_number(d.norm()) + ") has no direction");
+  }
+  return d.normalized();
+}
+
+double read_non_negative(const JsonNode& node) {
+  const double x = node.number();
+  if (x < 0.0) node.fail("must be >= 0, got " + format_number(x));
+  return x;
+}
+
+double read_positive(const JsonNode& node) {
+  const double x = node.number();
+  if (x <= 0.0) node.fail("must be > 0, got " + format_number(x));
+  return x;
+}
+
+HalfSpace read_half_space(const JsonNode& node) {
+  node.expect_object({"normal", "offset"});
+  HalfSpace h;
+  if (const auto normal = node.find("normal")) h.normal = read_direction(*normal);
+  h.offset = node.number_or("offset", h.offset);
+  return h;
+}
+
+}  // namespace boxpile::json_input

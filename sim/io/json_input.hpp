@@ -1,0 +1,118 @@
+// The JSON reading layer shared by the scene and query loaders: every value is read through a
+// JsonNode that knows its file and its JSON path ("bodies[3].half_extents[1]"), so that each
+// problem becomes an InputError naming the file, the path and what is wrong.
+//
+// Internal to boxpile::scene_io (the loaders include it; nothing else should need to).
+#pragma once
+
+#include <cstddef>
+#include <initializer_list>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/io/input_error.hpp"
+#include "sim/math.hpp"
+#include "sim/scene.hpp"
+
+namespace boxpile::json_input {
+
+// The whole text of the file at `path`; InputError(path, "", "cannot open: <reason>") otherwise.
+std::string read_text_file(const std::string& path);
+
+// Parses JSON text. Syntax errors are reported with line and column; a key given twice in one
+// object and a number beyond the range of a double are reported with their JSON path.
+nlohmann::json parse(const std::string& text, const std::string& source);
+
+// Edit distance with adjacent transpositions (optimal string alignment): the number of single
+// character insertions, deletions, substitutions and swaps that turn `a` into `b`.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
+// The candidate closest to `word` by edit distance, if it is close enough to be a plausible typo.
+std::optional<std::string_view> closest_match(std::string_view word,
+                                              std::span<const std::string_view> candidates);
+
+// `s` in double quotes, as names and keys appear in messages.
+std::string in_quotes(std::string_view s);
+
+// Shortest text that reads back as the same double ("0.5", "-1", "1e-12", "inf").
+std::string format_number(double x);
+
+// A JSON value with its place in a file. Cheap to copy; refers to the parsed document, which
+// must outlive it. Every accessor checks the type and throws InputError at this node's path.
+class JsonNode {
+ public:
+  // The document root (path "").
+  JsonNode(const nlohmann::json& root, std::string source);
+
+  const std::string& path() const { return path_; }
+  const std::string& source() const { return source_; }
+  const nlohmann::json& json() const { return *value_; }
+
+  // Throws InputError(source, path, what).
+  [[noreturn]] void fail(const std::string& what) const;
+
+  // --- objects ---
+  // Checks that this is an object and that every key is one of `allowed`; an unknown key names
+  // the closest allowed one. Call it first, so that a misspelt key is reported as such rather
+  // than as a missing one.
+  void expect_object(std::initializer_list<std::string_view> allowed) const;
+  bool has(std::string_view key) const;
+  // A required member: "missing required key" when absent.
+  JsonNode at(std::string_view key) const;
+  // An optional member.
+  std::optional<JsonNode> find(std::string_view key) const;
+
+  // --- arrays ---
+  // Checks that this is an array and returns its length.
+  std::size_t array_size() const;
+  // Checks that this is an array of exactly `n` elements.
+  void expect_array_size(std::size_t n) const;
+  JsonNode element(std::size_t i) const;
+
+  // --- scalars ---
+  double number() const;  // finite
+  int integer() const;    // a whole number within the range of int (5 and 5.0 both read as 5)
+  bool boolean() const;
+  std::string string() const;
+  // The index in `names` of this string; `what` names the vocabulary in the message, e.g.
+  // `unknown effect "frction"; did you mean "friction"?`.
+  std::size_t choice(std::span<const std::string_view> names, std::string_view what) const;
+
+  // Members with a fallback when absent (present but wrong is still an error).
+  double number_or(std::string_view key, double fallback) const;
+  int integer_or(std::string_view key, int fallback) const;
+  bool boolean_or(std::string_view key, bool fallback) const;
+  std::string string_or(std::string_view key, std::string fallback) const;
+
+ private:
+  JsonNode(const nlohmann::json& value, std::string source, std::string path);
+  JsonNode child(std::string_view key) const;
+  [[noreturn]] void fail_type(std::string_view expected) const;
+
+  const nlohmann::json* value_;
+  std::string source_;
+  std::string path_;
+};
+
+// --- readers for the value types that scenes and queries share ---
+
+// [x, y, z], finite.
+Vec3 read_vec3(const JsonNode& node);
+// [x, y, z], each > 0 (box half extents); the error names the offending component.
+Vec3 read_half_extents(const JsonNode& node);
+// [w, x, y, z], normalised; a zero quaternion is an error.
+Quat read_orientation(const JsonNode& node);
+// [x, y, z], normalised; a zero vector is an error.
+Vec3 read_direction(const JsonNode& node);
+// A number >= 0.
+double read_non_negative(const JsonNode& node);
+// A number > 0.
+double read_positive(const JsonNode& node);
+// {"normal": [x, y, z], "offset": d}: both optional (default: the plane z = 0, solid below).
+HalfSpace read_half_space(const JsonNode& node);
+
+}  // namespace boxpile::json_input

@@ -1,0 +1,300 @@
+#include "sim/io/scene_loader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "sim/collision/box.hpp"
+#include "sim/collision/box_plane.hpp"
+#include "sim/collision/collide.hpp"
+#include "sim/io/json_input.hpp"
+
+namespace boxpile {
+namespace {
+
+using json_input::in_quotes;
+using json_input::JsonNode;
+
+// Two bodies (or a body and the ground) overlap at the start when they interpenetrate by more
+// than this. Stacks written in decimal touch only up to rounding (0.1 + 0.2 != 0.3): about 1e-12 m
+// for coordinates up to 1e4 m, far below this, while any overlap a solver would push apart is
+// far above it.
+constexpr double kInitialOverlapTolerance = 1e-9;  // m
+
+// The effects vocabulary, in the order of the flags they set.
+constexpr std::array<std::string_view, 5> kEffectNames = {"gravity", "friction", "restitution",
+                                                          "damping", "gyroscopic"};
+constexpr std::array<bool Effects::*, 5> kEffectFlags = {
+    &Effects::gravity, &Effects::friction, &Effects::restitution, &Effects::damping,
+    &Effects::gyroscopic};
+
+constexpr std::array<std::string_view, 2> kSolverMethods = {"impulse", "penalty"};
+constexpr std::array<ContactSolver, 2> kSolverMethodValues = {ContactSolver::Impulse,
+                                                              ContactSolver::Penalty};
+
+constexpr std::array<std::string_view, 2> kIntegrators = {"explicit_euler", "semi_implicit_euler"};
+constexpr std::array<PositionIntegrator, 2> kIntegratorValues = {
+    PositionIntegrator::ExplicitEuler, PositionIntegrator::SemiImplicitEuler};
+
+std::string read_nonempty_string(const JsonNode& node) {
+  std::string s = node.string();
+  if (s.empty()) node.fail("must not be empty");
+  return s;
+}
+
+double read_restitution(const JsonNode& node) {
+  const double e = node.number();
+  if (e < 0.0 || e > 1.0) node.fail("must be in [0, 1], got " + json_input::format_number(e));
+  return e;
+}
+
+int read_pass_count(const JsonNode& node) {
+  const int n = node.integer();
+  if (n < 1) node.fail("must be >= 1, got " + std::to_string(n));
+  return n;
+}
+
+// A material; keys left out keep the values of `fallback` (the scene's, for a body).
+Material read_material(const JsonNode& node, const Material& fallback) {
+  node.expect_object({"friction", "restitution"});
+  Material m = fallback;
+  if (const auto mu = node.find("friction")) m.friction = json_input::read_non_negative(*mu);
+  if (const auto e = node.find("restitution")) m.restitution = read_restitution(*e);
+  return m;
+}
+
+// Only the listed effects are on; each may be listed once.
+Effects read_effects(const JsonNode& node) {
+  Effects effects{false, false, false, false, false};
+  std::array<bool, kEffectNames.size()> listed{};
+  for (std::size_t i = 0; i < node.array_size(); ++i) {
+    const JsonNode item = node.element(i);
+    const std::size_t k = item.choice(kEffectNames, "effect");
+    if (listed[k]) item.fail("effect " + in_quotes(kEffectNames[k]) + " is listed twice");
+    listed[k] = true;
+    effects.*kEffectFlags[k] = true;
+  }
+  return effects;
+}
+
+Damping read_damping(const JsonNode& node) {
+  node.expect_object({"linear", "angular"});
+  Damping d;
+  if (const auto c = node.find("linear")) d.linear = json_input::read_non_negative(*c);
+  if (const auto c = node.find("angular")) d.angular = json_input::read_non_negative(*c);
+  return d;
+}
+
+SolverSettings read_solver(const JsonNode& node) {
+  node.expect_object(
+      {"method", "collision_passes", "contact_passes", "shock_propagation", "integrator"});
+  SolverSettings s;
+  if (const auto m = node.find("method")) {
+    s.method = kSolverMethodValues[m->choice(kSolverMethods, "solver method")];
+  }
+  if (const auto n = node.find("collision_passes")) s.collision_passes = read_pass_count(*n);
+  if (const auto n = node.find("contact_passes")) s.contact_passes = read_pass_count(*n);
+  s.shock_propagation = node.boolean_or("shock_propagation", s.shock_propagation);
+  if (const auto i = node.find("integrator")) {
+    s.integrator = kIntegratorValues[i->choice(kIntegrators, "integrator")];
+  }
+  return s;
+}
+
+CollisionSettings read_collision(const JsonNode& node) {
+  node.expect_object({"reduce_to_four", "margin"});
+  CollisionSettings c;
+  c.reduce_to_four = node.boolean_or("reduce_to_four", c.reduce_to_four);
+  if (const auto m = node.find("margin")) c.margin = json_input::read_non_negative(*m);
+  return c;
+}
+
+TimeSettings read_time(const JsonNode& node) {
+  node.expect_object({"dt", "duration"});
+  TimeSettings t;
+  t.dt = json_input::read_positive(node.at("dt"));
+  t.duration = json_input::read_non_negative(node.at("duration"));
+  return t;
+}
+
+BoxShape read_box_shape(const JsonNode& node) {
+  node.expect_object({"half_extents", "offset", "orientation"});
+  BoxShape box;
+  box.half_extents = json_input::read_half_extents(node.at("half_extents"));
+  if (const auto o = node.find("offset")) box.offset = json_input::read_vec3(*o);
+  if (const auto q = node.find("orientation")) box.orientation = json_input::read_orientation(*q);
+  return box;
+}
+
+// A body is one box ("half_extents") or a compound ("boxes"): exactly one of the two.
+std::vector<BoxShape> read_shape(const JsonNode& body) {
+  const bool single = body.has("half_extents");
+  const bool compound = body.has("boxes");
+  if (single && compound) {
+    body.fail("has both \"half_extents\" (one box) and \"boxes\" (a compound): give one of them");
+  }
+  if (!single && !compound) {
+    body.fail("missing required key \"half_extents\" (one box) or \"boxes\" (a compound)");
+  }
+  if (single) return {BoxShape{json_input::read_half_extents(body.at("half_extents"))}};
+
+  const JsonNode boxes = body.at("boxes");
+  const std::size_t n = boxes.array_size();
+  if (n == 0) boxes.fail("must not be empty: a compound needs at least one box");
+  if (n > static_cast<std::size_t>(kMaxBoxesPerBody)) {
+    boxes.fail("at most " + std::to_string(kMaxBoxesPerBody) + " boxes per body, got " +
+               std::to_string(n));
+  }
+  std::vector<BoxShape> shapes;
+  for (std::size_t i = 0; i < n; ++i) shapes.push_back(read_box_shape(boxes.element(i)));
+  return shapes;
+}
+
+// A velocity given to a fixed body would be silently lost: say so instead.
+Vec3 read_body_velocity(const JsonNode& body, std::string_view key, bool fixed) {
+  const auto node = body.find(key);
+  if (!node) return Vec3::Zero();
+  const Vec3 v = json_input::read_vec3(*node);
+  if (fixed && !v.isZero(0.0)) node->fail("a fixed body does not move: must be [0, 0, 0]");
+  return v;
+}
+
+BodyDesc read_body(const JsonNode& node, const Material& scene_material) {
+  node.expect_object({"name", "mass", "half_extents", "boxes", "position", "orientation",
+                      "velocity", "angular_velocity", "fixed", "material"});
+  BodyDesc b;
+  b.name = read_nonempty_string(node.at("name"));
+  b.fixed = node.boolean_or("fixed", false);
+  // A fixed body has infinite mass in the dynamics; its mass is optional and only reported.
+  if (b.fixed) {
+    const auto mass = node.find("mass");
+    b.mass = mass ? json_input::read_positive(*mass) : 0.0;
+  } else {
+    b.mass = json_input::read_positive(node.at("mass"));
+  }
+  b.boxes = read_shape(node);
+  b.frame.position = json_input::read_vec3(node.at("position"));
+  if (const auto q = node.find("orientation")) {
+    b.frame.orientation = json_input::read_orientation(*q);
+  }
+  b.velocity = read_body_velocity(node, "velocity", b.fixed);
+  b.angular_velocity = read_body_velocity(node, "angular_velocity", b.fixed);
+  if (const auto m = node.find("material")) b.material = read_material(*m, scene_material);
+  return b;
+}
+
+std::vector<BodyDesc> read_bodies(const JsonNode& node, const Material& scene_material) {
+  std::vector<BodyDesc> bodies;
+  std::unordered_map<std::string, std::size_t> first_use;
+  for (std::size_t i = 0; i < node.array_size(); ++i) {
+    const JsonNode item = node.element(i);
+    bodies.push_back(read_body(item, scene_material));
+    const auto [it, inserted] = first_use.emplace(bodies.back().name, i);
+    if (!inserted) {
+      item.at("name").fail("duplicate body name " + in_quotes(bodies.back().name) +
+                           " (also bodies[" + std::to_string(it->second) + "])");
+    }
+  }
+  return bodies;
+}
+
+Scene read_scene(const JsonNode& root) {
+  root.expect_object({"name", "note", "gravity", "ground", "material", "effects", "damping",
+                      "bodies", "solver", "collision", "time", "allow_initial_overlap"});
+  Scene s;
+  s.name = read_nonempty_string(root.at("name"));
+  s.note = root.string_or("note", "");
+  if (const auto g = root.find("gravity")) s.gravity = json_input::read_vec3(*g);
+  if (const auto g = root.find("ground")) s.ground = json_input::read_half_space(*g);
+  if (const auto m = root.find("material")) s.material = read_material(*m, s.material);
+  if (const auto e = root.find("effects")) s.effects = read_effects(*e);
+  if (const auto d = root.find("damping")) s.damping = read_damping(*d);
+  s.bodies = read_bodies(root.at("bodies"), s.material);
+  if (const auto c = root.find("solver")) s.solver = read_solver(*c);
+  if (const auto c = root.find("collision")) s.collision = read_collision(*c);
+  s.time = read_time(root.at("time"));
+  s.allow_initial_overlap = root.boolean_or("allow_initial_overlap", false);
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Initial overlap
+
+// Radius of a sphere about the centre of mass that holds every box of the body.
+double bounding_radius(const RigidBody& body) {
+  double r = 0.0;
+  for (const BoxShape& s : body.shapes) r = std::max(r, s.offset.norm() + s.half_extents.norm());
+  return r;
+}
+
+std::string body_path(std::size_t i) { return "bodies[" + std::to_string(i) + "]"; }
+
+std::string overlap_advice() {
+  return " at the start; move them apart or set \"allow_initial_overlap\": true";
+}
+
+// Pairs that can never move apart (two fixed bodies, a fixed body and the ground) are not
+// checked: they exchange no impulses, so an overlap between them is harmless.
+void check_ground_overlap(const Scene& scene, const std::vector<RigidBody>& bodies) {
+  if (!scene.ground) return;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const RigidBody& b = bodies[i];
+    if (b.fixed) continue;
+    double depth = -std::numeric_limits<double>::infinity();
+    for (int k = 0; k < static_cast<int>(b.shapes.size()); ++k) {
+      const OrientedBox box =
+          OrientedBox::from(b.shape_pose(k), b.shapes[static_cast<std::size_t>(k)].half_extents);
+      depth = std::max(depth, box_plane_depth(box, *scene.ground));
+    }
+    if (depth > kInitialOverlapTolerance) {
+      throw InputError(scene.source, body_path(i),
+                       "body " + in_quotes(b.name) + " overlaps the ground by " +
+                           json_input::format_number(depth) + " m" + overlap_advice());
+    }
+  }
+}
+
+void check_body_overlap(const Scene& scene, const std::vector<RigidBody>& bodies) {
+  std::vector<double> radius;
+  for (const RigidBody& b : bodies) radius.push_back(bounding_radius(b));
+  for (std::size_t j = 0; j < bodies.size(); ++j) {
+    for (std::size_t i = 0; i < j; ++i) {
+      const RigidBody& a = bodies[i];
+      const RigidBody& b = bodies[j];
+      if (a.fixed && b.fixed) continue;
+      // Bounding spheres apart: the boxes cannot touch, skip the exact test.
+      if ((a.x - b.x).norm() > radius[i] + radius[j] + kInitialOverlapTolerance) continue;
+      const double depth = body_pair_depth(b, a);
+      if (depth > kInitialOverlapTolerance) {
+        throw InputError(scene.source, body_path(j),
+                         "body " + in_quotes(b.name) + " overlaps body " + in_quotes(a.name) +
+                             " (" + body_path(i) + ") by " + json_input::format_number(depth) +
+                             " m" + overlap_advice());
+      }
+    }
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& source) {
+  const nlohmann::json doc = json_input::parse(text, source);
+  Scene scene = read_scene(JsonNode(doc, source));
+  scene.source = source;
+  if (!scene.allow_initial_overlap) {
+    const std::vector<RigidBody> bodies = make_bodies(scene);
+    check_ground_overlap(scene, bodies);
+    check_body_overlap(scene, bodies);
+  }
+  return scene;
+}
+
+Scene load_scene(const std::string& path) {
+  return parse_scene(json_input::read_text_file(path), path);
+}
+
+}  // namespace boxpile
