@@ -1,6 +1,10 @@
 // The boxpile subcommands. Each registers its options on the CLI11 app and returns the exit code.
 #pragma once
 
+#include <optional>
+#include <string>
+#include <vector>
+
 #include <CLI/CLI.hpp>
 
 namespace boxpile::cli {
@@ -10,12 +14,27 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
 
-// `boxpile contacts QUERY.json [--reduce]`: the contact set of one query on stdout.
+// `boxpile contacts QUERY.json [--reduce] [--engines LIST]`: the contact sets of one query from
+// our detector and the reference engines, with a diff of each reference against ours, on stdout.
 struct ContactsOptions {
   std::string query;
   bool reduce = false;
+  std::vector<std::string> engines;  // empty: the default set
 };
 void add_contacts_command(CLI::App& app, ContactsOptions& options);
 int run_contacts(const ContactsOptions& options);
+
+// `boxpile run SCENE.json --engine NAME [--dt DT] [--duration T] [--every K] [--out FILE.json]`:
+// steps the scene in one engine; writes the recorded frames to FILE.json, or prints a summary.
+struct RunOptions {
+  std::string scene;
+  std::string engine;
+  std::optional<double> dt;        // s; the scene's when absent
+  std::optional<double> duration;  // s; the scene's when absent
+  int every = 10;                  // steps between recorded frames
+  std::string out;                 // empty: print a summary instead
+};
+void add_run_command(CLI::App& app, RunOptions& options);
+int run_run(const RunOptions& options);
 
 }  // namespace boxpile::cli

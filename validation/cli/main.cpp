@@ -3,6 +3,7 @@
 
 #include "sim/io/input_error.hpp"
 #include "validation/cli/commands.hpp"
+#include "validation/engine_factory.hpp"
 
 int main(int argc, char** argv) {
   using namespace boxpile::cli;
@@ -12,6 +13,8 @@ int main(int argc, char** argv) {
 
   ContactsOptions contacts;
   add_contacts_command(app, contacts);
+  RunOptions run;
+  add_run_command(app, run);
 
   try {
     app.parse(argc, argv);
@@ -26,7 +29,11 @@ int main(int argc, char** argv) {
 
   try {
     if (app.got_subcommand("contacts")) return run_contacts(contacts);
+    if (app.got_subcommand("run")) return run_run(run);
   } catch (const boxpile::InputError& e) {
+    std::cerr << "boxpile: error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const boxpile::UnknownEngine& e) {
     std::cerr << "boxpile: error: " << e.what() << '\n';
     return kExitBadInput;
   } catch (const std::exception& e) {

@@ -1,0 +1,253 @@
+#include "reference/ode_engine.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include "reference/ode_support.hpp"
+#include "sim/world.hpp"
+
+namespace boxpile {
+
+using namespace reference_detail;
+
+namespace {
+
+// Which scene body and which of its boxes a geom stands for (dGeomSetData points here).
+struct GeomTag {
+  int body = kGround;
+  int shape = 0;
+};
+
+// Air damping per step as ODE applies it, v <- (1 - s) v, matching the scene's continuous law
+// dv/dt = -c v over one step exactly: 1 - s = exp(-c dt).
+double damping_scale(double rate, double dt) { return 1.0 - std::exp(-rate * dt); }
+
+}  // namespace
+
+struct OdeEngine::World {
+  World(const Scene& scene, const ReferenceSettings& settings);
+  ~World();
+
+  void build_world();
+  void add_body(int index);
+  void add_ground(const HalfSpace& ground);
+  static void near_callback(void* data, dGeomID o1, dGeomID o2);
+  void collide_pair(dGeomID o1, dGeomID o2);
+  const Material& material_of(int body) const {
+    return body == kGround ? scene.material : bodies[static_cast<std::size_t>(body)].material;
+  }
+
+  Scene scene;
+  ReferenceSettings settings;
+  std::vector<RigidBody> bodies;  // mass properties, shapes about the centre of mass, frame offsets
+
+  dWorldID world = nullptr;
+  dSpaceID space = nullptr;
+  dJointGroupID contact_joints = nullptr;
+  std::vector<dBodyID> ode_bodies;  // scene order; null for fixed bodies
+  std::vector<GeomTag> tags;        // sized once: geoms point into it
+  std::vector<dContactGeom> scratch;
+  std::vector<BodyContact> contacts;
+  std::uint64_t steps = 0;
+  std::uint64_t messages_at_start = 0;
+};
+
+OdeEngine::World::World(const Scene& s, const ReferenceSettings& st)
+    : scene(s), settings(st), bodies(make_bodies(s)) {
+  ensure_ode_initialised();
+  messages_at_start = ode_messages().count;
+  // QuickStep shuffles its constraints with ODE's one global generator: the same seed for every
+  // build makes runs repeatable (as long as two ODE worlds do not step interleaved).
+  dRandSetSeed(settings.ode_seed);
+  build_world();
+}
+
+OdeEngine::World::~World() {
+  if (contact_joints) dJointGroupDestroy(contact_joints);
+  if (space) dSpaceDestroy(space);  // destroys its geoms too (cleanup mode is on by default)
+  if (world) dWorldDestroy(world);
+}
+
+void OdeEngine::World::build_world() {
+  world = dWorldCreate();
+  const Vec3 g = scene.effects.gravity ? scene.gravity : Vec3::Zero();
+  dWorldSetGravity(world, g.x(), g.y(), g.z());
+  dWorldSetERP(world, settings.ode_erp);
+  dWorldSetCFM(world, settings.ode_cfm);
+  dWorldSetQuickStepNumIterations(world, settings.ode_quickstep_iterations);
+  dWorldSetQuickStepW(world, settings.ode_quickstep_sor);
+  dWorldSetContactSurfaceLayer(world, settings.ode_surface_layer);
+  if (std::isfinite(settings.ode_max_correcting_velocity)) {
+    dWorldSetContactMaxCorrectingVel(world, settings.ode_max_correcting_velocity);
+  }
+  dWorldSetAutoDisableFlag(world, 0);  // no sleeping
+
+  // A simple space tests every pair of bounding boxes in a fixed order: deterministic, and for
+  // the hundred bodies of our largest scene cheaper than building a hash.
+  space = dSimpleSpaceCreate(nullptr);
+  contact_joints = dJointGroupCreate(0);
+
+  std::size_t geom_count = scene.ground ? 1 : 0;
+  for (const RigidBody& b : bodies) geom_count += b.shapes.size();
+  tags.reserve(geom_count);
+  for (int i = 0; i < static_cast<int>(bodies.size()); ++i) add_body(i);
+  if (scene.ground) add_ground(*scene.ground);
+
+  scratch.resize(static_cast<std::size_t>(std::max(1, settings.ode_max_contacts)));
+  contacts.reserve(static_cast<std::size_t>(settings.ode_max_contacts) * geom_count);
+}
+
+void OdeEngine::World::add_body(int index) {
+  const RigidBody& rb = bodies[static_cast<std::size_t>(index)];
+  dBodyID body = nullptr;
+  if (!rb.fixed) {
+    body = dBodyCreate(world);
+    // ODE wants the centre of mass at the body origin; our body frame is already there.
+    dMass mass;
+    const Mat3& I = rb.inertia_body;
+    dMassSetParameters(&mass, rb.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2));
+    dBodySetMass(body, &mass);
+    dBodySetPosition(body, rb.x.x(), rb.x.y(), rb.x.z());
+    dQuaternion q;
+    quat_to_ode(rb.q, q);
+    dBodySetQuaternion(body, q);
+    dBodySetLinearVel(body, rb.v.x(), rb.v.y(), rb.v.z());
+    dBodySetAngularVel(body, rb.omega.x(), rb.omega.y(), rb.omega.z());
+    dBodySetAutoDisableFlag(body, 0);
+    dBodySetGyroscopicMode(body, scene.effects.gyroscopic ? 1 : 0);
+    if (scene.effects.damping) {
+      const double dt = scene.time.dt;
+      dBodySetLinearDamping(body, damping_scale(scene.damping.linear, dt));
+      dBodySetAngularDamping(body, damping_scale(scene.damping.angular, dt));
+      // ODE skips damping below a speed threshold (0.01 by default): damp at every speed.
+      dBodySetLinearDampingThreshold(body, 0.0);
+      dBodySetAngularDampingThreshold(body, 0.0);
+    }
+  }
+  ode_bodies.push_back(body);
+
+  for (int k = 0; k < static_cast<int>(rb.shapes.size()); ++k) {
+    const BoxShape& shape = rb.shapes[static_cast<std::size_t>(k)];
+    const Vec3 size = 2.0 * shape.half_extents;
+    dGeomID geom = dCreateBox(space, size.x(), size.y(), size.z());
+    tags.push_back({index, k});
+    dGeomSetData(geom, &tags.back());
+    dQuaternion q;
+    if (body) {
+      dGeomSetBody(geom, body);
+      dGeomSetOffsetPosition(geom, shape.offset.x(), shape.offset.y(), shape.offset.z());
+      quat_to_ode(shape.orientation, q);
+      dGeomSetOffsetQuaternion(geom, q);
+    } else {
+      // A fixed body is a set of static geoms placed once.
+      const Pose pose = rb.shape_pose(k);
+      dGeomSetPosition(geom, pose.position.x(), pose.position.y(), pose.position.z());
+      quat_to_ode(pose.orientation, q);
+      dGeomSetQuaternion(geom, q);
+    }
+  }
+}
+
+void OdeEngine::World::add_ground(const HalfSpace& ground) {
+  // dCreatePlane(a, b, c, d) is the plane a x + b y + c z = d, solid on the side the normal
+  // points away from: our half-space n . x < offset.
+  dGeomID plane = dCreatePlane(space, ground.normal.x(), ground.normal.y(), ground.normal.z(),
+                               ground.offset);
+  tags.push_back({kGround, 0});
+  dGeomSetData(plane, &tags.back());
+}
+
+void OdeEngine::World::near_callback(void* data, dGeomID o1, dGeomID o2) {
+  static_cast<World*>(data)->collide_pair(o1, o2);
+}
+
+void OdeEngine::World::collide_pair(dGeomID o1, dGeomID o2) {
+  const dBodyID b1 = dGeomGetBody(o1);
+  const dBodyID b2 = dGeomGetBody(o2);
+  if (!b1 && !b2) return;        // fixed bodies and the ground never move against each other
+  if (b1 && b1 == b2) return;    // two boxes of one compound
+  // The ground is always B, so that the normal (toward o1) points from the ground to the body.
+  if (dGeomGetClass(o1) == dPlaneClass) std::swap(o1, o2);
+  const GeomTag& ta = *static_cast<const GeomTag*>(dGeomGetData(o1));
+  const GeomTag& tb = *static_cast<const GeomTag*>(dGeomGetData(o2));
+  const bool with_ground = tb.body == kGround;
+
+  const int n = dCollide(o1, o2, static_cast<int>(scratch.size()), scratch.data(), sizeof(dContactGeom));
+  if (n <= 0) return;
+
+  const Material m = combine_materials(material_of(ta.body), material_of(tb.body));
+  const Effects& fx = scene.effects;
+  OrientedBox box_a, box_b;
+  if (!with_ground) {
+    box_a = box_of_geom(o1);
+    box_b = box_of_geom(o2);
+  }
+  for (int i = 0; i < n; ++i) {
+    const dContactGeom& g = scratch[static_cast<std::size_t>(i)];
+    dContact joint{};
+    joint.geom = g;
+    // Approx1: mu is a friction coefficient (the force limit follows the normal force), not a
+    // force in newtons.
+    joint.surface.mode = dContactApprox1;
+    joint.surface.mu = fx.friction ? m.friction : 0.0;
+    if (fx.restitution && m.restitution > 0.0) {
+      joint.surface.mode |= dContactBounce;
+      joint.surface.bounce = m.restitution;
+      joint.surface.bounce_vel = settings.restitution_threshold;
+    }
+    dJointID j = dJointCreateContact(world, contact_joints, &joint);
+    dJointAttach(j, dGeomGetBody(o1), dGeomGetBody(o2));
+
+    const Contact c = with_ground ? ode_box_plane_contact(g) : ode_box_box_contact(box_a, box_b, g);
+    contacts.push_back({c, ta.body, tb.body, ta.shape, tb.shape});
+  }
+}
+
+OdeEngine::OdeEngine(const Scene& scene, const ReferenceSettings& settings)
+    : world_(std::make_unique<World>(scene, settings)) {}
+
+OdeEngine::~OdeEngine() = default;
+
+void OdeEngine::step() {
+  World& w = *world_;
+  w.contacts.clear();
+  dSpaceCollide(w.space, &w, &World::near_callback);
+  if (w.settings.ode_method == OdeStepMethod::Step) {
+    dWorldStep(w.world, w.scene.time.dt);
+  } else {
+    dWorldQuickStep(w.world, w.scene.time.dt);
+  }
+  dJointGroupEmpty(w.contact_joints);
+  ++w.steps;
+}
+
+double OdeEngine::time() const { return static_cast<double>(world_->steps) * world_->scene.time.dt; }
+
+void OdeEngine::body_states(std::vector<BodyState>& out) const {
+  const World& w = *world_;
+  out.resize(w.bodies.size());
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    const RigidBody& rb = w.bodies[i];
+    BodyState& s = out[i];
+    s.name = rb.name;
+    if (const dBodyID body = w.ode_bodies[i]) {
+      const Vec3 x = from_ode(dBodyGetPosition(body));
+      s.orientation = quat_from_ode(dBodyGetQuaternion(body));
+      s.position = x + s.orientation * rb.frame_offset;
+      s.velocity = from_ode(dBodyGetLinearVel(body));
+      s.angular_velocity = from_ode(dBodyGetAngularVel(body));
+    } else {
+      const Pose frame = rb.frame_pose();
+      s.position = frame.position;
+      s.orientation = frame.orientation;
+      s.velocity.setZero();
+      s.angular_velocity.setZero();
+    }
+  }
+}
+
+void OdeEngine::contacts(std::vector<BodyContact>& out) const { out = world_->contacts; }
+
+std::uint64_t OdeEngine::messages() const { return ode_messages().count - world_->messages_at_start; }
+
+}  // namespace boxpile

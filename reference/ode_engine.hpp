@@ -1,0 +1,46 @@
+// The scene as an ODE 0.16 world behind the Engine interface. ODE's types stay in the .cpp file.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "reference/settings.hpp"
+#include "sim/engine.hpp"
+#include "sim/scene.hpp"
+
+namespace boxpile {
+
+// ODE's messages (warnings it carries on after), caught by the handler installed with
+// dSetMessageHandler: counted since the process started, with the text of the last one.
+struct OdeMessageLog {
+  std::uint64_t count = 0;
+  std::string last;
+};
+OdeMessageLog ode_messages();
+
+// Bodies at their centre of mass with one box geom per shape (geom offsets for compounds),
+// fixed bodies as static geoms, the ground as a plane geom, contacts as dContactApprox1 joints
+// (mu a coefficient) rebuilt every step. See docs/reference-engines.md for the mapping.
+class OdeEngine final : public Engine {
+ public:
+  OdeEngine(const Scene& scene, const ReferenceSettings& settings = {});
+  ~OdeEngine() override;
+  OdeEngine(const OdeEngine&) = delete;
+  OdeEngine& operator=(const OdeEngine&) = delete;
+
+  std::string_view name() const override { return "ode"; }
+  void step() override;
+  double time() const override;
+  void body_states(std::vector<BodyState>& out) const override;
+  void contacts(std::vector<BodyContact>& out) const override;
+
+  // ODE messages caught since this engine was built.
+  std::uint64_t messages() const;
+
+ private:
+  struct World;
+  std::unique_ptr<World> world_;
+};
+
+}  // namespace boxpile

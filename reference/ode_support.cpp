@@ -1,0 +1,66 @@
+#include "reference/ode_support.hpp"
+
+#include <cstdarg>
+#include <cstdio>
+#include <mutex>
+
+#include "reference/convention.hpp"
+#include "reference/ode_engine.hpp"
+
+namespace boxpile {
+namespace {
+
+// ODE reports through a C callback with no user data, so the count is process-wide.
+std::mutex g_message_mutex;
+OdeMessageLog g_messages;
+
+void count_ode_message(int errnum, const char* msg, va_list ap) {
+  char text[512];
+  std::vsnprintf(text, sizeof text, msg, ap);
+  const std::lock_guard<std::mutex> lock(g_message_mutex);
+  ++g_messages.count;
+  g_messages.last = "ODE message " + std::to_string(errnum) + ": " + text;
+}
+
+}  // namespace
+
+OdeMessageLog ode_messages() {
+  const std::lock_guard<std::mutex> lock(g_message_mutex);
+  return g_messages;
+}
+
+namespace reference_detail {
+
+void ensure_ode_initialised() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    dInitODE2(0);
+    // Messages only (such as dWorldStep's "LCP internal error, s <= 0"): ODE carries on after
+    // them. Errors and debug reports abort the process whatever the handler does, so ODE's own
+    // handlers stay in place for those.
+    dSetMessageHandler(count_ode_message);
+  });
+}
+
+OrientedBox box_of_geom(dGeomID geom) {
+  dVector3 lengths;
+  dGeomBoxGetLengths(geom, lengths);
+  return {from_ode(dGeomGetPosition(geom)), matrix_from_ode(dGeomGetRotation(geom)),
+          0.5 * from_ode(lengths)};
+}
+
+Contact ode_box_box_contact(const OrientedBox& a, const OrientedBox& b, const dContactGeom& g) {
+  const Vec3 n = from_ode(g.normal);
+  const Vec3 p = from_ode(g.pos);
+  const FeatureKind kind = box_box_kind(a, b, n);
+  const Vec3 position = kind == FeatureKind::EdgeEdge ? p : ode_face_midpoint(a, b, p, n, g.depth);
+  return {position, n, g.depth, kind_only(kind)};
+}
+
+Contact ode_box_plane_contact(const dContactGeom& g) {
+  const Vec3 n = from_ode(g.normal);
+  return {from_ode(g.pos) + 0.5 * g.depth * n, n, g.depth, kind_only(FeatureKind::Plane)};
+}
+
+}  // namespace reference_detail
+}  // namespace boxpile

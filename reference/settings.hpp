@@ -1,0 +1,54 @@
+// Settings of the reference engines (ODE and Bullet) that a Scene does not say: solver method and
+// iterations, error reduction and constraint mixing, contact caps. Every field has a default and a
+// unit; docs/reference-engines.md says how each maps to the engine and what cannot be matched.
+#pragma once
+
+#include <limits>
+
+namespace boxpile {
+
+enum class OdeStepMethod {
+  QuickStep,  // dWorldQuickStep: projected Gauss-Seidel (SOR-LCP), fixed iterations, O(n)
+  Step,       // dWorldStep: the "big matrix" Dantzig LCP, exact but O(n^3)
+};
+
+struct ReferenceSettings {
+  // --- ODE 0.16 -----------------------------------------------------------------------------
+  OdeStepMethod ode_method = OdeStepMethod::QuickStep;
+  int ode_quickstep_iterations = 20;  // passes per step (ODE's default)
+  double ode_quickstep_sor = 1.3;     // over-relaxation w, dimensionless (ODE's default)
+  // Fraction of the joint (and contact) error removed per step, dimensionless (ODE's default).
+  double ode_erp = 0.2;
+  // Constraint force mixing, the diagonal added to the LCP: (m/s)/N for contacts. ODE's default
+  // in double precision.
+  double ode_cfm = 1e-10;
+  // Points per geom pair passed to dCollide: dBoxBox clips up to 8 (dBoxPlane caps itself at 4).
+  int ode_max_contacts = 8;
+  // Penetration allowed before ODE corrects it, m (dWorldSetContactSurfaceLayer; default 0).
+  double ode_surface_layer = 0.0;
+  // Largest velocity ERP may give a contact, m/s (dWorldSetContactMaxCorrectingVel; default none).
+  double ode_max_correcting_velocity = std::numeric_limits<double>::infinity();
+  // QuickStep shuffles the constraint order with ODE's global generator: reseeded on every build.
+  unsigned long ode_seed = 0;
+
+  // --- Bullet 3.24 (double precision) --------------------------------------------------------
+  int bullet_iterations = 10;  // sequential-impulse passes (btContactSolverInfo::m_numIterations)
+  // Contact error reduction per step, dimensionless (m_erp2; Bullet's default).
+  double bullet_erp = 0.2;
+  double bullet_cfm = 0.0;  // m_globalCfm, Bullet's default
+  // Split impulse: shallow penetration is removed by a separate pseudo-velocity that adds no
+  // momentum (Bullet's default: on, for penetration up to 0.04 m).
+  bool bullet_split_impulse = true;
+  double bullet_split_impulse_threshold = -0.04;  // m, a negative distance
+  // Box-plane pairs: Bullet adds one point per step unless perturbation iterations are set
+  // (btDefaultCollisionConfiguration::setPlaneConvexMultipointIterations); 0 keeps the default.
+  int bullet_plane_iterations = 0;
+  int bullet_plane_min_points = 3;  // perturb only while the manifold has fewer points
+
+  // --- both ---------------------------------------------------------------------------------
+  // Approach speeds below this bounce with no restitution, m/s (ODE bounce_vel, Bullet
+  // m_restitutionVelocityThreshold; Bullet's default).
+  double restitution_threshold = 0.2;
+};
+
+}  // namespace boxpile

@@ -1,0 +1,73 @@
+#include "validation/engine_factory.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "reference/bullet_engine.hpp"
+#include "reference/ode_engine.hpp"
+
+namespace boxpile {
+namespace {
+
+using Factory = std::unique_ptr<Engine> (*)(const Scene&, const ReferenceSettings&);
+
+struct EngineEntry {
+  std::string_view name;
+  Factory make;                  // null: not yet available
+  std::string_view unavailable;  // why, when make is null
+};
+
+template <class E>
+std::unique_ptr<Engine> build(const Scene& scene, const ReferenceSettings& settings) {
+  return std::make_unique<E>(scene, settings);
+}
+
+// Adding an engine is one line here.
+constexpr std::array<EngineEntry, 3> kEngines = {{
+    {"own", nullptr, "our own solver is not yet available as an engine (it arrives with the solver issue)"},
+    {"ode", &build<OdeEngine>, ""},
+    {"bullet", &build<BulletEngine>, ""},
+}};
+
+constexpr std::array<std::string_view, kEngines.size()> kAllNames = [] {
+  std::array<std::string_view, kEngines.size()> names{};
+  for (std::size_t i = 0; i < kEngines.size(); ++i) names[i] = kEngines[i].name;
+  return names;
+}();
+
+constexpr std::size_t kAvailableCount = static_cast<std::size_t>(
+    std::count_if(kEngines.begin(), kEngines.end(), [](const EngineEntry& e) { return e.make != nullptr; }));
+
+constexpr std::array<std::string_view, kAvailableCount> kAvailableNames = [] {
+  std::array<std::string_view, kAvailableCount> names{};
+  std::size_t k = 0;
+  for (const EngineEntry& e : kEngines)
+    if (e.make) names[k++] = e.name;
+  return names;
+}();
+
+std::string available_list() {
+  std::string s;
+  for (std::string_view n : kAvailableNames) s += (s.empty() ? "" : ", ") + std::string(n);
+  return s;
+}
+
+}  // namespace
+
+std::span<const std::string_view> engine_names() { return kAllNames; }
+std::span<const std::string_view> available_engine_names() { return kAvailableNames; }
+
+std::unique_ptr<Engine> make_engine(std::string_view name, const Scene& scene,
+                                    const ReferenceSettings& settings) {
+  for (const EngineEntry& e : kEngines) {
+    if (e.name != name) continue;
+    if (!e.make) {
+      throw UnknownEngine("engine \"" + std::string(name) + "\": " + std::string(e.unavailable) +
+                          "; available: " + available_list());
+    }
+    return e.make(scene, settings);
+  }
+  throw UnknownEngine("unknown engine \"" + std::string(name) + "\"; available: " + available_list());
+}
+
+}  // namespace boxpile

@@ -1,0 +1,33 @@
+// Every engine that can run a scene, by name: the one place the CLI and the tests build engines.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "reference/settings.hpp"
+#include "sim/engine.hpp"
+#include "sim/scene.hpp"
+
+namespace boxpile {
+
+// An engine name that is unknown, or known but not yet available; what() says which and lists
+// the engines that can be used.
+class UnknownEngine : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// Every engine name, available or not, in the order help texts list them.
+std::span<const std::string_view> engine_names();
+// The names make_engine() can build.
+std::span<const std::string_view> available_engine_names();
+
+// The engine `name` built from `scene` (the reference engines take `settings`); UnknownEngine
+// for a name that is not available.
+std::unique_ptr<Engine> make_engine(std::string_view name, const Scene& scene,
+                                    const ReferenceSettings& settings = {});
+
+}  // namespace boxpile
