@@ -443,6 +443,17 @@ TEST_CASE("body names are unique; a key appears once per object", "[scene]") {
                        "time": {"dt": 0.1, "duration": 1}})",
                     "bodies[0].mass", "duplicate key \"mass\"");
   check_scene_error(R"({"name": "x", "name": "y"})", "name", "duplicate key");
+  check_scene_error(R"({"name": "x", "bodies": [{}, {"boxes": [{}, {"offset": [0, 0, 0],
+                       "offset": [1, 0, 0]}]}]})",
+                    "bodies[1].boxes[1].offset", "duplicate key \"offset\"");
+  // The same keys in different objects are fine, and so is the path after nested arrays.
+  check_scene_error(R"({"name": "x", "bodies": [{"name": "a"}, {"name": "b", "boxes": [[1], [2]],
+                       "boxes": 1}]})",
+                    "bodies[1].boxes", "duplicate key");
+  check_scene_error(R"({"name": "x", "bodies": [{"name": "a", "mass": 1, "position": [0, 0, 0],
+                       "boxes": [{"half_extents": [1, 1, 1]}, {"half_extents": [1e999, 1, 1]}]}],
+                       "time": {"dt": 1, "duration": 1}})",
+                    "bodies[0].boxes[1].half_extents[0]", "finite");
 }
 
 TEST_CASE("a body is one box or a compound, of 1 to kMaxBoxesPerBody boxes", "[scene]") {

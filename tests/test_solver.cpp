@@ -200,7 +200,7 @@ TEST_CASE("the broadphase keeps narrowphase work near linear in a spread-out pil
   s.ground = HalfSpace{};
   for (int i = 0; i < 1000; ++i) {
     BodyDesc b;
-    b.name = "b" + std::to_string(i);
+    b.name = std::string("b").append(std::to_string(i));
     b.boxes = {BoxShape{Vec3::Constant(0.25), Vec3::Zero(), Quat::Identity()}};
     b.frame.position = Vec3((i % 40) * 1.0, (i / 40) * 1.0, 0.25);
     s.bodies.push_back(b);

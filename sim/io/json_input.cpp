@@ -183,8 +183,8 @@ std::string read_text_file(const std::string& path) {
   if (std::filesystem::is_directory(path, ec)) {
     throw InputError(path, "", "cannot open: it is a directory");
   }
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                              &std::fclose);
+  const auto close = [](std::FILE* f) { std::fclose(f); };
+  const std::unique_ptr<std::FILE, decltype(close)> file(std::fopen(path.c_str(), "rb"), close);
   if (!file) throw InputError(path, "", std::string("cannot open: ") + std::strerror(errno));
   std::string text;
   char buffer[1 << 16];

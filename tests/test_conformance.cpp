@@ -1,0 +1,611 @@
+// Conformance of our contact generation with ODE 0.16 and Bullet 3.24, and checks of the
+// reference engines themselves.
+//
+// In the manner of MuJoCo's randomised box-box test: many random pairs (fixed seed; BOXPILE_SEED
+// and BOXPILE_SAMPLES override it for long runs), invariants checked on every sample, and every
+// kind of disagreement counted and gated by a stated limit rather than required never to happen.
+// Where we and a reference disagree, brute force decides who is right: the exact least
+// penetration over the 15 candidate axes and the exact penetration along each reported normal
+// (tests/support/geometry.hpp). Set BOXPILE_DUMP_DIR to write every disagreement as a contact
+// query; the ones worth keeping are committed under fixtures/contacts/ with a note, and the
+// fixture test below checks what each engine reports for them.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "reference/bullet_engine.hpp"
+#include "reference/ode_engine.hpp"
+#include "reference/reference_contacts.hpp"
+#include "sim/collision/box_box.hpp"
+#include "sim/collision/box_plane.hpp"
+#include "sim/io/query_loader.hpp"
+#include "sim/io/scene_loader.hpp"
+#include "tests/support/geometry.hpp"
+#include "validation/contact_diff.hpp"
+#include "validation/engine_factory.hpp"
+
+using namespace boxpile;
+using namespace boxpile::test;
+
+namespace {
+
+constexpr int kDefaultSamples = 20000;
+
+// --- tolerances -------------------------------------------------------------------------------
+// Boxes of 0.1-1 m computed in double precision from the same rotation matrices: agreeing
+// detectors differ by rounding (1e-15 m); these bounds sit far above that and far below any
+// physical difference.
+constexpr double kNormalTolerance = 1e-8;  // rad, between normals of the same feature kind
+constexpr double kDepthTolerance = 1e-9;   // m, between deepest depths
+// ODE and Bullet find face points in reference-face coordinates through a 2x2 inverse, which
+// loses digits when the incident face stands nearly on edge: 1e-7 m covers that.
+constexpr double kRegionTolerance = 1e-7;  // m, reference point to our contact region
+constexpr double kUnitTolerance = 1e-12;   // |n| - 1
+// Within this of zero, the least penetration says "touching": either answer is right.
+constexpr double kTouchingTolerance = 1e-9;  // m
+
+// Both we and the references prefer a face axis to an edge axis up to about 5% of depth (ours:
+// edge only if 5% + 1e-6 scale shallower, box_box.cpp; ODE and Bullet: fudge_factor 1.05), so a
+// normal whose penetration exceeds the least by up to this band is acceptable.
+constexpr double kFaceBiasRelative = 1.0 / 0.95 - 1.0;
+constexpr double kFaceBiasAbsolute = 1e-6 / 0.95;  // times the largest half extent
+
+// Bullet's port of dBoxBox adds 1e-5 to every |C_ij| before the edge-axis tests (fudge2 in
+// btBoxBoxDetector.cpp), so its edge-edge depth exceeds the true one by
+// 1e-5 (a_i1 + a_i2 + b_j1 + b_j2) / |Ai x Bj|. ODE 0.16 dropped that term.
+constexpr double kBulletEdgeFudge = 1e-5;
+
+bool is_face(FeatureKind k) { return k == FeatureKind::FaceA || k == FeatureKind::FaceB; }
+
+// --- brute force ------------------------------------------------------------------------------
+
+// How much the penetration along n exceeds the least penetration, and whether that is within
+// the face-bias band both detectors allow.
+struct NormalJudgement {
+  double excess = 0.0;  // m
+  bool acceptable = false;
+};
+NormalJudgement judge_normal(const BoxPair& p, const Vec3& n, const std::vector<Vec3>& axes, double least) {
+  const double scale = std::max(p.a.half.maxCoeff(), p.b.half.maxCoeff());
+  const double along = directional_penetration(p.a, p.b, n, axes);
+  NormalJudgement j;
+  j.excess = along - least;
+  j.acceptable = j.excess <= kFaceBiasRelative * least + kFaceBiasAbsolute * scale + kTouchingTolerance;
+  return j;
+}
+
+enum class Verdict { OwnRight, ReferenceRight, BothAcceptable, BothWrong };
+
+// Which normal is right. Between a face and an edge (`face_bias`), either is right within the
+// face-bias band; between two faces or two edges neither detector means to prefer one, so the
+// one nearer the least penetration is right (both, when within the touching tolerance).
+Verdict arbitrate_normals(const BoxPair& p, const Vec3& n_own, const Vec3& n_ref, bool face_bias) {
+  std::mt19937_64 unused;
+  const std::vector<Vec3> axes = candidate_axes(p.a, p.b, unused, 0);
+  const double least = least_penetration(p.a, p.b, axes);
+  const NormalJudgement own = judge_normal(p, n_own, axes, least);
+  const NormalJudgement ref = judge_normal(p, n_ref, axes, least);
+  if (face_bias) {
+    if (own.acceptable && ref.acceptable) return Verdict::BothAcceptable;
+    if (own.acceptable) return Verdict::OwnRight;
+    if (ref.acceptable) return Verdict::ReferenceRight;
+    return Verdict::BothWrong;
+  }
+  if (std::abs(own.excess - ref.excess) <= kTouchingTolerance) return Verdict::BothAcceptable;
+  return own.excess < ref.excess ? Verdict::OwnRight : Verdict::ReferenceRight;
+}
+
+// Presence: whoever says "contact" is right when the boxes overlap by more than the touching
+// tolerance, whoever says "none" when they are apart by more; in between both are.
+Verdict arbitrate_presence(const BoxPair& p, bool own_touches) {
+  std::mt19937_64 unused;
+  const double least = least_penetration(p.a, p.b, candidate_axes(p.a, p.b, unused, 0));
+  if (std::abs(least) <= kTouchingTolerance) return Verdict::BothAcceptable;
+  return (least > 0.0) == own_touches ? Verdict::OwnRight : Verdict::ReferenceRight;
+}
+
+// --- writing disagreements as contact queries (BOXPILE_DUMP_DIR) ------------------------------
+
+std::string number(double x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << x;
+  return s.str();
+}
+std::string json_vec(const Vec3& v) { return "[" + number(v.x()) + ", " + number(v.y()) + ", " + number(v.z()) + "]"; }
+std::string json_box(const OrientedBox& b) {
+  const Quat q(b.axes);
+  return "{\"half_extents\": " + json_vec(b.half) + ", \"position\": " + json_vec(b.center) +
+         ", \"orientation\": [" + number(q.w()) + ", " + number(q.x()) + ", " + number(q.y()) + ", " +
+         number(q.z()) + "]}";
+}
+
+class Dumper {
+ public:
+  Dumper() {
+    if (const char* dir = std::getenv("BOXPILE_DUMP_DIR")) dir_ = dir;
+  }
+  void box_box(const std::string& name, const std::string& note, const BoxPair& p) {
+    write(name, note, json_box(p.a), json_box(p.b));
+  }
+  void box_plane(const std::string& name, const std::string& note, const OrientedBox& a, const HalfSpace& h) {
+    write(name, note, json_box(a),
+          "{\"plane\": {\"normal\": " + json_vec(h.normal) + ", \"offset\": " + number(h.offset) + "}}");
+  }
+
+ private:
+  // At most this many files per category prefix, so a long run does not flood the folder.
+  static constexpr int kMaxPerCategory = 20;
+  void write(const std::string& name, const std::string& note, const std::string& a, const std::string& b) {
+    if (dir_.empty()) return;
+    const std::string category = name.substr(0, name.rfind('_'));
+    if (written_[category]++ >= kMaxPerCategory) return;
+    std::filesystem::create_directories(dir_);
+    std::ofstream(dir_ + "/" + name + ".json") << "{\n  \"name\": \"" << name << "\",\n  \"note\": \"" << note
+                                               << "\",\n  \"a\": " << a << ",\n  \"b\": " << b << "\n}\n";
+  }
+  std::string dir_;
+  std::map<std::string, int> written_;
+};
+
+// --- box-box ----------------------------------------------------------------------------------
+
+struct Reference {
+  const char* name;
+  Manifold (*detect)(const OrientedBox&, const OrientedBox&);
+  int max_points;
+  bool merges_close_points;  // Bullet's persistent manifold merges points nearer than its threshold
+};
+
+// Every way a reference's set can differ from ours; the first that applies is counted.
+enum class Mismatch {
+  Invalid,   // the reference's set breaks the convention on its own (see reference_invariants)
+  Presence,  // one reports a contact, the other none
+  Kind,      // face against edge
+  Normal,    // same kind, another normal
+  Merged,    // same normal, fewer points because close points merged (Bullet, by design)
+  Depth,     // same normal, another deepest depth
+  Region,    // same normal, a reference point outside our contact region
+  Count,     // same normal, another number of points than min(ours, the reference's cap)
+};
+constexpr std::array<const char*, 8> kMismatchNames = {"invalid", "presence", "kind", "normal",
+                                                       "merged", "depth", "region", "count"};
+const char* mismatch_name(Mismatch m) { return kMismatchNames[static_cast<std::size_t>(m)]; }
+
+const char* verdict_name(Verdict v) {
+  switch (v) {
+    case Verdict::OwnRight: return "own right";
+    case Verdict::ReferenceRight: return "reference right";
+    case Verdict::BothAcceptable: return "both acceptable";
+    case Verdict::BothWrong: return "both wrong";
+  }
+  return "";
+}
+
+struct Tally {
+  int samples = 0;
+  int touching = 0;  // both report contacts
+  std::map<Mismatch, int> mismatches;
+  std::map<std::pair<Mismatch, Verdict>, int> verdicts;
+  int edge_fudge = 0;  // Bullet edge-edge depths explained exactly by its fudge2 term
+  // Largest differences among samples that agree: how far below the tolerances they stay.
+  double worst_angle = 0.0, worst_depth = 0.0, worst_region = 0.0;
+
+  int count(Mismatch m) const {
+    const auto it = mismatches.find(m);
+    return it == mismatches.end() ? 0 : it->second;
+  }
+  int count(Verdict v) const {
+    int n = 0;
+    for (const auto& [key, k] : verdicts)
+      if (key.second == v) n += k;
+    return n;
+  }
+};
+
+// Why a reference's set is invalid on its own, or empty: more points than the engine allows, a
+// normal not unit or not shared by all points, a negative depth, or a midpoint outside either box
+// by more than half its depth (it lies depth/2 from each surface).
+std::string reference_invalid(const BoxPair& p, const Manifold& m, int max_points) {
+  if (m.size() > max_points) return "too many points";
+  for (const Contact& c : m) {
+    if (std::abs(c.normal.norm() - 1.0) > kUnitTolerance) return "normal not unit";
+    if ((c.normal - m[0].normal).norm() > kUnitTolerance) return "normals differ";
+    if (c.depth < -kDepthTolerance) return "negative depth";
+    if (outside_distance(p.a, c.position) > 0.5 * c.depth + kRegionTolerance) return "point outside A";
+    if (outside_distance(p.b, c.position) > 0.5 * c.depth + kRegionTolerance) return "point outside B";
+  }
+  return "";
+}
+
+// Bullet's edge-edge depth minus ours, as its fudge2 term predicts it for our edge axis.
+double bullet_edge_fudge(const BoxPair& p, const SatResult& sat) {
+  const int i = sat.axis_a, j = sat.axis_b;
+  const double len = p.a.axes.col(i).cross(p.b.axes.col(j)).norm();
+  const double halves = p.a.half.sum() - p.a.half[i] + p.b.half.sum() - p.b.half[j];
+  return kBulletEdgeFudge * halves / len;
+}
+
+// The first mismatch between our set and the reference's, if any (Invalid is checked apart).
+std::optional<Mismatch> classify(const Reference& ref, const BoxPair& p, const Manifold& own,
+                                 const SatResult& sat, const Manifold& theirs, Tally& t) {
+  if (own.empty() != theirs.empty()) return Mismatch::Presence;
+  if (own.empty()) return std::nullopt;
+  ++t.touching;
+  if (is_face(sat.kind) != is_face(theirs[0].feature.kind())) return Mismatch::Kind;
+  const ContactDiff d = diff_contacts(own, theirs);
+  if (*d.normal_angle > kNormalTolerance) return Mismatch::Normal;
+  t.worst_angle = std::max(t.worst_angle, *d.normal_angle);
+
+  const int expected = std::min(own.size(), ref.max_points);
+  if (ref.merges_close_points && theirs.size() < expected) return Mismatch::Merged;
+
+  double depth_error = std::abs(*d.depth_difference);
+  if (ref.merges_close_points && sat.kind == FeatureKind::EdgeEdge) {
+    const double fudge = bullet_edge_fudge(p, sat);
+    depth_error = std::abs(*d.depth_difference - fudge);
+    if (depth_error <= kDepthTolerance) ++t.edge_fudge;
+  }
+  if (depth_error > kDepthTolerance) return Mismatch::Depth;
+  t.worst_depth = std::max(t.worst_depth, depth_error);
+
+  double region = 0.0;
+  for (const Contact& c : theirs) region = std::max(region, distance_to_region(own, own[0].normal, c.position));
+  if (region > kRegionTolerance) return Mismatch::Region;
+  t.worst_region = std::max(t.worst_region, region);
+
+  if (theirs.size() != expected) return Mismatch::Count;
+  return std::nullopt;
+}
+
+std::optional<Verdict> arbitrate(Mismatch m, const BoxPair& p, const Manifold& own, const Manifold& theirs) {
+  switch (m) {
+    case Mismatch::Invalid: return Verdict::OwnRight;
+    case Mismatch::Presence: return arbitrate_presence(p, !own.empty());
+    case Mismatch::Kind: return arbitrate_normals(p, own[0].normal, theirs[0].normal, /*face_bias=*/true);
+    case Mismatch::Normal: return arbitrate_normals(p, own[0].normal, theirs[0].normal, /*face_bias=*/false);
+    default: return std::nullopt;  // same normal: nothing for brute force to decide
+  }
+}
+
+void compare_box_box(const Reference& ref, const BoxPair& p, int k, const Manifold& own, const SatResult& sat,
+                     Tally& t, Dumper& dump) {
+  const Manifold theirs = ref.detect(p.a, p.b);
+  ++t.samples;
+  auto record = [&](Mismatch m, const std::string& why) {
+    ++t.mismatches[m];
+    if (const auto v = arbitrate(m, p, own, theirs)) ++t.verdicts[{m, *v}];
+    dump.box_box(std::string(ref.name) + "_" + mismatch_name(m) + "_" + std::to_string(test_seed(11)) + "_" +
+                     std::to_string(k),
+                 why, p);
+  };
+  if (const std::string why = reference_invalid(p, theirs, ref.max_points); !why.empty()) {
+    record(Mismatch::Invalid, why);
+  }
+  if (const auto m = classify(ref, p, own, sat, theirs, t)) record(*m, mismatch_name(*m));
+}
+
+void report(const Reference& ref, const Tally& t) {
+  std::ostringstream s;
+  s << ref.name << ": " << t.samples << " samples, " << t.touching << " touching in both; mismatches:";
+  for (const auto& [m, n] : t.mismatches) {
+    s << ' ' << mismatch_name(m) << ' ' << n;
+    for (const auto& [key, k] : t.verdicts)
+      if (key.first == m) s << " (" << verdict_name(key.second) << ' ' << k << ')';
+    s << ',';
+  }
+  if (ref.merges_close_points) s << " edge depths explained by fudge2 " << t.edge_fudge << ',';
+  s << " worst agreeing angle " << t.worst_angle << " rad, depth " << t.worst_depth << " m, region "
+    << t.worst_region << " m";
+  WARN(s.str());
+}
+
+// Mismatches allowed, as a fraction of the samples, per kind (see docs/reference-engines.md for
+// the measured rates behind them).
+using Gates = std::map<Mismatch, double>;
+
+void check_gates(const Tally& t, const Gates& gates) {
+  for (const auto& [m, n] : t.mismatches) {
+    INFO(mismatch_name(m) << ": " << n << " of " << t.samples);
+    const auto g = gates.find(m);
+    CHECK(n <= (g == gates.end() ? 0.0 : g->second) * t.samples);
+  }
+  // Brute force never finds us wrong, nor both of us.
+  CHECK(t.count(Verdict::ReferenceRight) == 0);
+  CHECK(t.count(Verdict::BothWrong) == 0);
+}
+
+}  // namespace
+
+TEST_CASE("our box-box contacts agree with ODE and Bullet on random pairs", "[conformance][box_box]") {
+  std::mt19937_64 rng(test_seed(11));
+  const int n = test_samples(kDefaultSamples);
+  const Reference ode{"ode", &ode_box_box, kMaxManifoldPoints, false};
+  const Reference bullet{"bullet", &bullet_box_box, 4, true};
+  Tally ode_tally, bullet_tally;
+  Dumper dump;
+  for (int k = 0; k < n; ++k) {
+    const BoxPair p = random_touching_pair(rng);
+    Manifold own;
+    collide_box_box(p.a, p.b, CollisionSettings{}, own);
+    const SatResult sat = box_box_sat(p.a, p.b);
+    compare_box_box(ode, p, k, own, sat, ode_tally, dump);
+    compare_box_box(bullet, p, k, own, sat, bullet_tally, dump);
+  }
+  report(ode, ode_tally);
+  report(bullet, bullet_tally);
+  CHECK(ode_tally.touching > n / 2);
+  // Measured over 20,000 (seed 11) and 300,000 (seed 7) samples, as fractions of the samples:
+  //   invalid    ODE 2.0e-4 / 2.9e-4, Bullet 2.0e-4 / 3.0e-4: an edge-edge point outside the
+  //              boxes (the closest points of the infinite edge lines, on a deeper edge pair)
+  //   presence   Bullet 0 / 1.7e-5: a phantom edge contact of depth ~1e-5 between separated
+  //              boxes (its fudge2 term widens the boxes along edge axes)
+  //   kind       ODE 3.0e-3 / 3.4e-3, Bullet 2.8e-3 / 3.2e-3: face against edge in a near-tie,
+  //              both within the face-bias band
+  //   normal     ODE 4.2e-3 / 4.4e-3, Bullet 4.2e-3 / 4.4e-3: they keep an earlier edge axis
+  //              unless a later one is 5% shallower; ours is always the shallower
+  //   merged     Bullet 5.3e-3 / 5.5e-3: points closer than its breaking threshold merged
+  // Each gate is about twice the larger rate; depth, region and count have none (0 allowed).
+  {
+    INFO("ODE");
+    check_gates(ode_tally, {{Mismatch::Invalid, 6e-4}, {Mismatch::Kind, 7e-3}, {Mismatch::Normal, 9e-3}});
+  }
+  {
+    INFO("Bullet");
+    check_gates(bullet_tally, {{Mismatch::Invalid, 6e-4}, {Mismatch::Presence, 1e-4}, {Mismatch::Kind, 7e-3},
+                               {Mismatch::Normal, 9e-3}, {Mismatch::Merged, 1.1e-2}});
+  }
+}
+
+// --- box-plane --------------------------------------------------------------------------------
+
+namespace {
+
+struct PlaneCase {
+  OrientedBox box;
+  HalfSpace plane;
+};
+
+// A random box and a random plane with the box's deepest vertex between 0.1 of its largest half
+// extent above the plane and one largest half extent below it (so some boxes have 5 or more
+// vertices below).
+PlaneCase random_box_on_plane(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> ext(0.1, 1.0);
+  std::uniform_real_distribution<double> coord(-2.0, 2.0);
+  std::uniform_real_distribution<double> sink(-0.1, 1.0);
+  PlaneCase c;
+  c.box = make_box(Vec3(ext(rng), ext(rng), ext(rng)), Vec3(coord(rng), coord(rng), coord(rng)),
+                   random_rotation(rng));
+  c.plane.normal = random_unit(rng);
+  const double depth = sink(rng) * c.box.half.maxCoeff();
+  c.plane.offset = c.plane.normal.dot(c.box.center) - c.box.radius_along(c.plane.normal) + depth;
+  return c;
+}
+
+// Whether each point of `sub` is one of `set`'s points (position and depth within tolerance).
+bool is_subset(const Manifold& sub, const Manifold& set) {
+  for (const Contact& c : sub) {
+    const bool found = std::any_of(set.begin(), set.end(), [&](const Contact& d) {
+      return (c.position - d.position).norm() <= kRegionTolerance && std::abs(c.depth - d.depth) <= kDepthTolerance;
+    });
+    if (!found) return false;
+  }
+  return true;
+}
+
+// Whether the points of m are the deepest m.size() points of `all`.
+bool are_deepest(const Manifold& m, const Manifold& all) {
+  std::vector<double> depths;
+  for (const Contact& c : all) depths.push_back(c.depth);
+  std::sort(depths.rbegin(), depths.rend());
+  const double cut = depths[static_cast<std::size_t>(m.size() - 1)];
+  return std::all_of(m.begin(), m.end(), [&](const Contact& c) { return c.depth >= cut - kDepthTolerance; });
+}
+
+}  // namespace
+
+TEST_CASE("our box-plane contacts agree with ODE and Bullet on random poses", "[conformance][box_plane]") {
+  std::mt19937_64 rng(test_seed(12));
+  const int n = test_samples(kDefaultSamples);
+  Dumper dump;
+  std::map<std::string, int> counts;
+  auto note = [&](const std::string& what, const PlaneCase& c, int k) {
+    ++counts[what];
+    dump.box_plane(what + "_" + std::to_string(test_seed(12)) + "_" + std::to_string(k), what, c.box, c.plane);
+  };
+  for (int k = 0; k < n; ++k) {
+    const PlaneCase c = random_box_on_plane(rng);
+    Manifold own;
+    collide_box_plane(c.box, c.plane, 0.0, own);
+    const Manifold ode = ode_box_plane(c.box, c.plane);
+    const Manifold bullet = bullet_box_plane(c.box, c.plane);
+    const Manifold multi = bullet_box_plane(c.box, c.plane, kBulletMultipoint);
+    if (!own.empty()) ++counts["touching"];
+
+    // Every reference point: the plane normal, and inside the box up to half its depth.
+    for (const Manifold* m : {&ode, &bullet, &multi}) {
+      for (const Contact& p : *m) {
+        if ((p.normal - c.plane.normal).norm() > kUnitTolerance ||
+            outside_distance(c.box, p.position) > 0.5 * std::abs(p.depth) + kRegionTolerance) {
+          note("invalid", c, k);
+        }
+      }
+    }
+
+    // ODE: some of our points, at most 4, always the deepest among them.
+    if (own.empty() != ode.empty()) note("ode_presence", c, k);
+    if (!ode.empty() && !own.empty()) {
+      if (!is_subset(ode, own)) note("ode_not_subset", c, k);
+      if (std::abs(max_depth(ode) - max_depth(own)) > kDepthTolerance) note("ode_depth", c, k);
+      if (own.size() > 4) note("ode_capped", c, k);                       // by design: at most 4
+      if (ode.size() < std::min(own.size(), 4)) note("ode_missed", c, k);  // fewer than it may give
+      if (!are_deepest(ode, own)) note("ode_not_deepest", c, k);
+    }
+
+    // Bullet by default: the deepest vertex alone, and also a vertex a little above the plane
+    // (within its contact breaking threshold) with a negative depth, where we report nothing.
+    if (!own.empty()) {
+      if (bullet.size() != 1 || std::abs(bullet[0].depth - max_depth(own)) > kDepthTolerance) {
+        note("bullet_not_deepest", c, k);
+      }
+      Manifold penetrating;
+      for (const Contact& p : multi) {
+        if (p.depth >= 0.0) penetrating.push_back(p);
+      }
+      if (!is_subset(penetrating, own)) note("multipoint_not_subset", c, k);
+      if (penetrating.size() < multi.size()) ++counts["multipoint_speculative"];
+    } else if (!bullet.empty()) {
+      if (bullet[0].depth > 0.0) note("bullet_phantom", c, k);
+      ++counts["bullet_speculative"];
+    }
+  }
+  std::ostringstream s;
+  s << "box-plane, " << n << " samples:";
+  for (const auto& [what, k] : counts) s << ' ' << what << ' ' << k << ',';
+  WARN(s.str());
+
+  CHECK(counts["touching"] > n / 2);
+  // Never: a point off the convention, an ODE point that is not one of ours or not the deepest,
+  // Bullet's one point other than our deepest, a multipoint point other than ours.
+  for (const char* never : {"invalid", "ode_presence", "ode_not_subset", "ode_depth", "bullet_not_deepest",
+                            "multipoint_not_subset", "bullet_phantom"}) {
+    INFO(never);
+    CHECK(counts[never] == 0);
+  }
+  // By design, gated at about twice the rates measured over 20,000 (seed 12) and 300,000 (seed 7)
+  // samples: ODE gives fewer points than min(ours, 4) (1.5% / 1.5%), and so not our deepest ones
+  // (1.6% / 1.4%); see fixtures plane_ode_missed_vertex and plane_deep_six.
+  CHECK(counts["ode_missed"] <= 0.03 * n);
+  CHECK(counts["ode_not_deepest"] <= 0.03 * n);
+}
+
+// --- fixtures ---------------------------------------------------------------------------------
+
+namespace {
+
+enum class Agreement { Agree, Differ };
+
+// What each engine reports for a fixture under fixtures/contacts/: point counts, and whether ODE
+// and Bullet agree with us (same normal, deepest depth and region, or no contact on both sides).
+// For a box-box disagreement, what brute force says.
+struct FixtureExpectation {
+  const char* name;
+  int own, ode, bullet;
+  int bullet_multipoint;  // box-plane only (-1 for box-box)
+  Agreement ode_agrees, bullet_agrees;
+  std::optional<Verdict> verdict;
+};
+
+constexpr Agreement kAgree = Agreement::Agree;
+constexpr Agreement kDiffer = Agreement::Differ;
+
+const std::vector<FixtureExpectation> kFixtures = {
+    // The foundation special cases.
+    {"aligned_offset", 4, 4, 4, -1, kAgree, kAgree, {}},
+    {"yaw45_octagon", 8, 8, 4, -1, kAgree, kAgree, {}},  // Bullet's cap: 4 of our 8
+    {"crossing_edges", 1, 1, 1, -1, kAgree, kDiffer, {}},  // Bullet's fudge2: 2e-5 m deeper
+    {"edge_on_face", 2, 2, 2, -1, kAgree, kAgree, {}},
+    {"vertex_on_face", 1, 1, 1, -1, kAgree, kAgree, {}},
+    {"separated", 0, 0, 0, -1, kAgree, kAgree, {}},
+    {"touching", 4, 4, 4, -1, kAgree, kAgree, {}},
+    {"deep_overlap", 4, 4, 4, -1, kAgree, kAgree, {}},
+    {"parallel_edges", 4, 4, 2, -1, kAgree, kAgree, {}},  // Bullet merges points 7 mm apart
+    {"small_on_large", 4, 4, 4, -1, kAgree, kAgree, {}},
+    {"plane_flat", 4, 4, 1, 3, kAgree, kAgree, {}},
+    {"plane_edge", 2, 2, 1, 2, kAgree, kAgree, {}},
+    {"plane_vertex", 1, 1, 1, 1, kAgree, kAgree, {}},
+    {"plane_tilted", 4, 4, 1, 3, kAgree, kAgree, {}},
+    // Conventions that differ by design.
+    {"plane_bullet_speculative", 0, 0, 1, 3, kAgree, kDiffer, {}},
+    {"plane_deep_six", 6, 4, 1, 1, kAgree, kAgree, {}},
+    {"plane_ode_missed_vertex", 4, 3, 1, 1, kAgree, kAgree, {}},
+    {"bullet_merged_points", 3, 3, 2, -1, kAgree, kAgree, {}},
+    {"face_edge_tie", 3, 1, 1, -1, kDiffer, kDiffer, Verdict::BothAcceptable},
+    // Where a reference is wrong.
+    {"ode_deeper_edge_pair", 1, 1, 1, -1, kDiffer, kDiffer, Verdict::OwnRight},
+    {"ode_edge_point_outside", 1, 1, 1, -1, kDiffer, kDiffer, Verdict::OwnRight},
+    {"bullet_phantom_edge", 0, 0, 1, -1, kAgree, kDiffer, Verdict::OwnRight},
+};
+
+Agreement agreement(const Manifold& own, const Manifold& theirs) {
+  if (own.empty() && theirs.empty()) return kAgree;
+  if (own.empty() || theirs.empty()) return kDiffer;
+  const ContactDiff d = diff_contacts(own, theirs, kRegionTolerance);
+  const bool same = *d.normal_angle <= kNormalTolerance && std::abs(*d.depth_difference) <= kDepthTolerance &&
+                    (d.reference_tested ? d.inside_hull : true);
+  double region = 0.0;
+  for (const Contact& c : theirs) region = std::max(region, distance_to_region(own, own[0].normal, c.position));
+  return same && region <= kRegionTolerance ? kAgree : kDiffer;
+}
+
+std::string fixture_path(const std::string& name) {
+  return std::string(BOXPILE_FIXTURES_DIR) + "/contacts/" + name + ".json";
+}
+
+}  // namespace
+
+TEST_CASE("every contact fixture is described, and each engine reports what it says", "[conformance][fixtures]") {
+  std::vector<std::string> on_disk;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(BOXPILE_FIXTURES_DIR) + "/contacts")) {
+    if (entry.path().extension() == ".json") on_disk.push_back(entry.path().stem().string());
+  }
+  for (const std::string& name : on_disk) {
+    INFO("fixtures/contacts/" << name << ".json needs an entry in kFixtures");
+    CHECK(std::any_of(kFixtures.begin(), kFixtures.end(), [&](const auto& f) { return name == f.name; }));
+  }
+
+  for (const FixtureExpectation& f : kFixtures) {
+    INFO("fixture " << f.name);
+    const ContactQuery q = load_query(fixture_path(f.name));
+    const OrientedBox a = OrientedBox::from(q.a.pose, q.a.half_extents);
+    Manifold own, ode, bullet;
+    if (q.b) {
+      const OrientedBox b = OrientedBox::from(q.b->pose, q.b->half_extents);
+      collide_box_box(a, b, CollisionSettings{}, own);
+      ode = ode_box_box(a, b);
+      bullet = bullet_box_box(a, b);
+      CHECK(f.bullet_multipoint == -1);
+      if (f.verdict) {
+        const BoxPair p{a, b};
+        const Manifold& other = ode_box_box(a, b).empty() ? bullet : ode;
+        const Verdict v = own.empty() || other.empty()
+                              ? arbitrate_presence(p, !own.empty())
+                              : arbitrate_normals(p, own[0].normal, other[0].normal,
+                                                  is_face(own[0].feature.kind()) != is_face(other[0].feature.kind()));
+        CHECK(verdict_name(v) == std::string(verdict_name(*f.verdict)));
+      }
+    } else {
+      collide_box_plane(a, *q.plane, 0.0, own);
+      ode = ode_box_plane(a, *q.plane);
+      bullet = bullet_box_plane(a, *q.plane);
+      CHECK(bullet_box_plane(a, *q.plane, kBulletMultipoint).size() == f.bullet_multipoint);
+    }
+    CHECK(own.size() == f.own);
+    CHECK(ode.size() == f.ode);
+    CHECK(bullet.size() == f.bullet);
+    CHECK((agreement(own, ode) == f.ode_agrees));
+    CHECK((agreement(own, bullet) == f.bullet_agrees));
+  }
+}
+
+TEST_CASE("Bullet's edge-edge depth exceeds ours by exactly its fudge2 term", "[conformance][fixtures]") {
+  // crossing_edges: unit cubes, edges along x (A) and y (B), |A0 x B1| = 1, so Bullet adds
+  // 1e-5 (0.5 + 0.5 + 0.5 + 0.5) = 2e-5 m to the true depth 0.01 m.
+  const ContactQuery q = load_query(fixture_path("crossing_edges"));
+  const OrientedBox a = OrientedBox::from(q.a.pose, q.a.half_extents);
+  const OrientedBox b = OrientedBox::from(q.b->pose, q.b->half_extents);
+  const Manifold bullet = bullet_box_box(a, b);
+  REQUIRE(bullet.size() == 1);
+  CHECK(std::abs(bullet[0].depth - (0.01 + 2e-5)) < 1e-12);
+  CHECK(std::abs(ode_box_box(a, b)[0].depth - 0.01) < 1e-12);
+}
