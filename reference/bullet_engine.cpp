@@ -111,7 +111,8 @@ BulletEngine::World::World(const Scene& s, const ReferenceSettings& st)
   world.setGravity(to_bt(g));
   btContactSolverInfo& info = world.getSolverInfo();
   info.m_numIterations = settings.bullet_iterations;
-  info.m_erp2 = settings.bullet_erp;
+  info.m_erp = settings.bullet_erp;
+  info.m_erp2 = settings.bullet_split_erp;
   info.m_globalCfm = settings.bullet_cfm;
   info.m_splitImpulse = settings.bullet_split_impulse ? 1 : 0;
   info.m_splitImpulsePenetrationThreshold = settings.bullet_split_impulse_threshold;

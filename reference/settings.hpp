@@ -33,13 +33,17 @@ struct ReferenceSettings {
 
   // --- Bullet 3.24 (double precision) --------------------------------------------------------
   int bullet_iterations = 10;  // sequential-impulse passes (btContactSolverInfo::m_numIterations)
-  // Contact error reduction per step, dimensionless (m_erp2; Bullet's default).
+  // Error reduction per step, dimensionless (m_erp; Bullet's default): for contacts shallower
+  // than the split-impulse threshold (or all contacts without split impulse) it is a Baumgarte
+  // velocity bias inside the contact impulse.
   double bullet_erp = 0.2;
-  double bullet_cfm = 0.0;  // m_globalCfm, Bullet's default
-  // Split impulse: shallow penetration is removed by a separate pseudo-velocity that adds no
-  // momentum (Bullet's default: on, for penetration up to 0.04 m).
+  // Split impulse: contacts deeper than the threshold are pushed apart by a separate
+  // pseudo-velocity that adds no momentum, with error reduction m_erp2 (Bullet's defaults: on,
+  // 0.04 m, 0.2).
   bool bullet_split_impulse = true;
   double bullet_split_impulse_threshold = -0.04;  // m, a negative distance
+  double bullet_split_erp = 0.2;
+  double bullet_cfm = 0.0;  // m_globalCfm, Bullet's default
   // Box-plane pairs: Bullet adds one point per step unless perturbation iterations are set
   // (btDefaultCollisionConfiguration::setPlaneConvexMultipointIterations); 0 keeps the default.
   int bullet_plane_iterations = 0;

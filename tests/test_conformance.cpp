@@ -577,7 +577,7 @@ TEST_CASE("every contact fixture is described, and each engine reports what it s
       CHECK(f.bullet_multipoint == -1);
       if (f.verdict) {
         const BoxPair p{a, b};
-        const Manifold& other = ode_box_box(a, b).empty() ? bullet : ode;
+        const Manifold& other = ode.empty() ? bullet : ode;
         const Verdict v = own.empty() || other.empty()
                               ? arbitrate_presence(p, !own.empty())
                               : arbitrate_normals(p, own[0].normal, other[0].normal,
@@ -608,4 +608,316 @@ TEST_CASE("Bullet's edge-edge depth exceeds ours by exactly its fudge2 term", "[
   REQUIRE(bullet.size() == 1);
   CHECK(std::abs(bullet[0].depth - (0.01 + 2e-5)) < 1e-12);
   CHECK(std::abs(ode_box_box(a, b)[0].depth - 0.01) < 1e-12);
+}
+
+
+// --- the reference engines --------------------------------------------------------------------
+
+namespace {
+
+Scene empty_scene(const Effects& effects, bool ground) {
+  Scene scene;
+  scene.name = "test";
+  scene.effects = effects;
+  if (ground) scene.ground = HalfSpace{};
+  scene.time.dt = 1.0 / 240.0;
+  return scene;
+}
+
+BodyDesc unit_box(const std::string& name, const Vec3& position) {
+  BodyDesc b;
+  b.name = name;
+  b.mass = 1.0;
+  b.boxes = {BoxShape{}};
+  b.frame.position = position;
+  return b;
+}
+
+// The L of fixtures/scenes/compound_on_ground.json: its inertia has a product term (x z), so
+// Bullet needs principal axes, and its centre of mass is away from the body frame.
+BodyDesc l_compound(const std::string& name, const Vec3& position) {
+  BodyDesc b;
+  b.name = name;
+  b.mass = 3.5;
+  b.boxes = {BoxShape{Vec3(1.0, 0.5, 0.25), Vec3::Zero(), Quat::Identity()},
+             BoxShape{Vec3(0.25, 0.5, 0.75), Vec3(0.75, 0.0, 1.0), Quat::Identity()}};
+  b.frame.position = position;
+  return b;
+}
+
+void run(Engine& e, int steps) {
+  for (int k = 0; k < steps; ++k) e.step();
+}
+
+std::vector<BodyState> states_of(const Engine& e) {
+  std::vector<BodyState> s;
+  e.body_states(s);
+  return s;
+}
+
+constexpr std::array<const char*, 2> kReferenceEngines = {"ode", "bullet"};
+
+}  // namespace
+
+TEST_CASE("the engine factory builds ODE and Bullet and refuses other names", "[reference]") {
+  const Scene scene = empty_scene(Effects{}, true);
+  CHECK(make_engine("ode", scene)->name() == "ode");
+  CHECK(make_engine("bullet", scene)->name() == "bullet");
+  CHECK_THROWS_AS(make_engine("own", scene), UnknownEngine);
+  CHECK_THROWS_WITH(make_engine("own", scene), Catch::Contains("not yet available"));
+  CHECK_THROWS_WITH(make_engine("odee", scene), Catch::Contains("unknown engine \"odee\"") &&
+                                                    Catch::Contains("available: ode, bullet"));
+}
+
+TEST_CASE("free fall follows the semi-implicit Euler parabola, only with the gravity effect", "[reference]") {
+  // Both engines update v += g dt, then x += v dt: after n steps z = z0 - g dt^2 n (n + 1) / 2.
+  for (const char* name : kReferenceEngines) {
+    INFO(name);
+    Scene scene = empty_scene(Effects{}, false);
+    scene.bodies = {unit_box("box", Vec3(0, 0, 10))};
+    const auto falling = make_engine(name, scene);
+    const int n = 240;
+    run(*falling, n);
+    const double dt = scene.time.dt;
+    const BodyState s = states_of(*falling)[0];
+    CHECK(std::abs(s.position.z() - (10.0 - 9.81 * dt * dt * n * (n + 1) / 2)) < 1e-9);
+    CHECK(std::abs(s.velocity.z() + 9.81 * n * dt) < 1e-9);
+    CHECK(std::abs(falling->time() - 1.0) < 1e-12);
+
+    scene.effects.gravity = false;
+    const auto floating = make_engine(name, scene);
+    run(*floating, n);
+    CHECK(states_of(*floating)[0].position == Vec3(0, 0, 10));
+  }
+}
+
+TEST_CASE("a compound's scene frame is reported, its centre of mass moves straight", "[reference]") {
+  // No gravity, no torque, no gyroscopic term: the centre of mass moves at v, the angular
+  // velocity stays. The reported frame sits at frame_offset from the centre of mass.
+  for (const char* name : kReferenceEngines) {
+    INFO(name);
+    Scene scene = empty_scene(Effects{false, false, false, false, false}, false);
+    BodyDesc l = l_compound("l", Vec3(1, 2, 3));
+    l.velocity = Vec3(0.5, -0.2, 0.1);
+    l.angular_velocity = Vec3(0.3, -0.4, 0.8);
+    scene.bodies = {l};
+    const RigidBody body = make_bodies(scene)[0];
+    const auto engine = make_engine(name, scene);
+    const BodyState start = states_of(*engine)[0];
+    CHECK((start.position - Vec3(1, 2, 3)).norm() < 1e-12);
+    CHECK(std::abs(start.orientation.angularDistance(Quat::Identity())) < 1e-12);
+    run(*engine, 240);
+    const BodyState s = states_of(*engine)[0];
+    const Vec3 com = s.position - s.orientation * body.frame_offset;
+    CHECK((com - (body.x + engine->time() * l.velocity)).norm() < 1e-9);
+    CHECK((s.velocity - l.velocity).norm() < 1e-9);
+    CHECK((s.angular_velocity - l.angular_velocity).norm() < 1e-9);
+    CHECK(s.orientation.angularDistance(Quat::Identity()) > 0.5);  // it did turn
+  }
+}
+
+TEST_CASE("air damping decays velocities as exp(-c t)", "[reference]") {
+  for (const char* name : kReferenceEngines) {
+    INFO(name);
+    Scene scene = empty_scene(Effects{false, false, false, true, false}, false);
+    scene.damping = Damping{0.5, 0.3};
+    BodyDesc box = unit_box("box", Vec3::Zero());
+    box.velocity = Vec3(2, 0, 0);
+    box.angular_velocity = Vec3(0, 0, 3);
+    scene.bodies = {box};
+    const auto engine = make_engine(name, scene);
+    run(*engine, 240);
+    const BodyState s = states_of(*engine)[0];
+    CHECK(std::abs(s.velocity.x() - 2.0 * std::exp(-0.5)) < 1e-9);
+    CHECK(std::abs(s.angular_velocity.z() - 3.0 * std::exp(-0.3)) < 1e-9);
+  }
+}
+
+TEST_CASE("materials combine per pair: a box slides down an incline at g (sin - mu cos)", "[reference]") {
+  // Box friction 0.1 on a ground of 0.9: the pair's mu is sqrt(0.1 * 0.9) = 0.3 (a product rule
+  // would give 0.09 and a = 4.14 m/s^2). On 30 degrees, a = 9.81 (0.5 - 0.3 cos 30) = 2.356 m/s^2.
+  // ODE keeps 4 points under the sliding box and lands within 0.2%. Bullet's box-plane manifold
+  // gains one point per step and drops points that slid 0.017 m, so the box rocks on 1-2 points
+  // and slides 3.2% slower after 1 s: its bound is looser.
+  const double theta = M_PI / 6;
+  const double expected = 9.81 * (std::sin(theta) - 0.3 * std::cos(theta));
+  const std::map<std::string, double> tolerance = {{"ode", 0.01}, {"bullet", 0.05}};
+  for (const char* name : kReferenceEngines) {
+    INFO(name);
+    Scene scene = empty_scene(Effects{true, true, false, false, false}, true);
+    const Vec3 n(-std::sin(theta), 0, std::cos(theta));
+    scene.ground = HalfSpace{n, 0.0};
+    scene.material = Material{0.9, 0.0};
+    BodyDesc box = unit_box("box", 0.5 * n);
+    box.frame.orientation = Quat(Eigen::AngleAxisd(-theta, Vec3::UnitY()));
+    box.material = Material{0.1, 0.0};
+    scene.bodies = {box};
+    const auto engine = make_engine(name, scene);
+    run(*engine, 240);
+    const double speed = states_of(*engine)[0].velocity.norm();
+    INFO("speed after 1 s " << speed << ", expected " << expected);
+    CHECK(std::abs(speed - expected) < tolerance.at(name) * expected);
+  }
+}
+
+TEST_CASE("five stacked cubes stand for 5 s in both engines", "[reference]") {
+  // DESIGN.md measured top z - 4.5 = -1e-4 (ODE QuickStep) and -1.3e-4 (Bullet) at dt 1/240,
+  // with drift below 2e-3 m: these bounds leave room for noise but fail on any collapse.
+  const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/stack_5.json");
+  for (const char* name : kReferenceEngines) {
+    INFO(name);
+    const auto engine = make_engine(name, scene);
+    const int steps = static_cast<int>(std::lround(scene.time.duration / scene.time.dt));
+    run(*engine, steps);
+    const BodyState top = states_of(*engine).back();
+    INFO("top at " << top.position.transpose());
+    CHECK(top.position.z() - 4.5 > -1e-3);
+    CHECK(top.position.z() - 4.5 < 1e-4);
+    CHECK(top.position.head<2>().norm() < 1e-2);
+    CHECK(top.velocity.norm() < 1e-2);
+    if (const auto* ode = dynamic_cast<const OdeEngine*>(engine.get())) CHECK(ode->messages() == 0);
+  }
+}
+
+TEST_CASE("a compound rests on the ground with its scene frame where the file put it", "[reference]") {
+  const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/compound_on_ground.json");
+  for (const char* name : kReferenceEngines) {
+    INFO(name);
+    const auto engine = make_engine(name, scene);
+    run(*engine, 480);
+    const BodyState s = states_of(*engine)[0];
+    INFO("frame at " << s.position.transpose());
+    CHECK((s.position - Vec3(0, 0, 0.25)).norm() < 1e-3);
+    CHECK(s.orientation.angularDistance(Quat::Identity()) < 1e-3);
+  }
+}
+
+TEST_CASE("engine contacts follow our convention", "[reference]") {
+  // Two cubes on the ground: every contact's normal points from body_b toward body_a, the
+  // ground is always body_b, and positions lie on the touching faces.
+  Scene scene = empty_scene(Effects{true, true, false, false, false}, true);
+  scene.bodies = {unit_box("low", Vec3(0, 0, 0.5)), unit_box("high", Vec3(0.2, 0.1, 1.5))};
+  for (const char* name : kReferenceEngines) {
+    INFO(name);
+    const auto engine = make_engine(name, scene);
+    run(*engine, 10);
+    std::vector<BodyContact> contacts;
+    engine->contacts(contacts);
+    const std::vector<BodyState> states = states_of(*engine);
+    int ground = 0, between = 0;
+    for (const BodyContact& c : contacts) {
+      CHECK(std::abs(c.contact.normal.norm() - 1.0) < 1e-12);
+      CHECK(std::abs(c.contact.depth) < 1e-2);
+      CHECK(c.body_a != kGround);
+      if (c.body_b == kGround) {
+        ++ground;
+        CHECK((c.contact.normal - Vec3::UnitZ()).norm() < 1e-9);
+        CHECK(std::abs(c.contact.position.z()) < 1e-2);
+      } else {
+        ++between;
+        const Vec3 ab = states[static_cast<std::size_t>(c.body_a)].position -
+                        states[static_cast<std::size_t>(c.body_b)].position;
+        CHECK(c.contact.normal.dot(ab) > 0.9 * ab.norm());
+        CHECK(std::abs(c.contact.position.z() - 1.0) < 1e-2);
+      }
+    }
+    CHECK(ground >= 3);
+    CHECK(between >= 3);
+  }
+}
+
+TEST_CASE("runs repeat exactly", "[reference]") {
+  // Three cubes dropped turned onto each other: contacts, friction, QuickStep's shuffled order.
+  Scene scene = empty_scene(Effects{true, true, true, false, false}, true);
+  for (int i = 0; i < 3; ++i) {
+    BodyDesc b = unit_box("b" + std::to_string(i), Vec3(0.1 * i, -0.05 * i, 0.6 + 1.2 * i));
+    b.frame.orientation = Quat(Eigen::AngleAxisd(0.3 * i, Vec3(1, 2, 3).normalized()));
+    scene.bodies.push_back(b);
+  }
+  for (const char* name : kReferenceEngines) {
+    INFO(name);
+    const auto first = make_engine(name, scene);
+    run(*first, 480);
+    const auto second = make_engine(name, scene);
+    run(*second, 480);
+    const std::vector<BodyState> s1 = states_of(*first), s2 = states_of(*second);
+    for (std::size_t i = 0; i < s1.size(); ++i) {
+      CHECK(s1[i].position == s2[i].position);
+      CHECK(s1[i].orientation.coeffs() == s2[i].orientation.coeffs());
+      CHECK(s1[i].velocity == s2[i].velocity);
+    }
+    CHECK(s1.back().position.z() < 3.0);  // the boxes fell
+  }
+}
+
+// --- the diff that `boxpile contacts` prints --------------------------------------------------
+
+namespace {
+
+Manifold points_at(const std::vector<Vec3>& positions, const Vec3& normal, double depth) {
+  Manifold m;
+  for (const Vec3& p : positions) m.push_back({p, normal, depth, {}});
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("convex hulls and distances to them in the contact plane", "[contact_diff]") {
+  using V2 = Eigen::Vector2d;
+  const auto hull = convex_hull({V2(0, 0), V2(1, 0), V2(0.5, 0.5), V2(1, 1), V2(0, 1), V2(0.5, 0), V2(1, 1)});
+  REQUIRE(hull.size() == 4);  // the interior point, the edge midpoint and the repeat are gone
+  double area = 0.0;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const V2& a = hull[i];
+    const V2& b = hull[(i + 1) % hull.size()];
+    area += 0.5 * (a.x() * b.y() - a.y() * b.x());
+  }
+  CHECK(std::abs(area - 1.0) < 1e-15);  // counter-clockwise: positive
+  CHECK(distance_to_hull(hull, V2(0.3, 0.7)) == 0.0);
+  CHECK(std::abs(distance_to_hull(hull, V2(1.5, 0.5)) - 0.5) < 1e-15);
+  CHECK(std::abs(distance_to_hull(hull, V2(2, 2)) - std::sqrt(2.0)) < 1e-15);
+
+  const auto segment = convex_hull({V2(0, 0), V2(1, 1), V2(2, 2), V2(0.5, 0.5)});
+  REQUIRE(segment.size() == 2);
+  CHECK(std::abs(distance_to_hull(segment, V2(1, 0)) - std::sqrt(0.5)) < 1e-15);
+  CHECK(std::abs(distance_to_hull(segment, V2(3, 2)) - 1.0) < 1e-15);
+  CHECK(convex_hull({V2(1, 2), V2(1, 2)}).size() == 1);
+}
+
+TEST_CASE("the contact diff: counts, normal angle, deepest depth, Hausdorff and hull", "[contact_diff]") {
+  const Vec3 z = Vec3::UnitZ();
+  const Manifold square = points_at({Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)}, z, 0.01);
+  SECTION("one point at the centre, a tilted normal, deeper") {
+    const double tilt = 1e-3;
+    const Manifold centre = points_at({Vec3(0.5, 0.5, 1.2)}, Vec3(std::sin(tilt), 0, std::cos(tilt)), 0.03);
+    const ContactDiff d = diff_contacts(square, centre);
+    CHECK(d.own_points == 4);
+    CHECK(d.reference_points == 1);
+    CHECK(std::abs(*d.normal_angle - tilt) < 1e-15);
+    CHECK(std::abs(*d.depth_difference - 0.02) < 1e-15);
+    // Measured in the plane normal to our normal: the height 1.2 does not count.
+    CHECK(std::abs(*d.hausdorff - std::sqrt(0.5)) < 1e-15);
+    CHECK(d.reference_tested);
+    CHECK(*d.hull_distance == 0.0);
+    CHECK(d.inside_hull);
+  }
+  SECTION("a point outside our region") {
+    const Manifold outside = points_at({Vec3(1.25, 0.5, 1)}, z, 0.01);
+    const ContactDiff d = diff_contacts(square, outside);
+    CHECK(std::abs(*d.hull_distance - 0.25) < 1e-15);
+    CHECK_FALSE(d.inside_hull);
+    CHECK(std::abs(distance_to_region(square, z, Vec3(1.25, 0.5, 7)) - 0.25) < 1e-15);
+  }
+  SECTION("ours is the smaller set: our points are tested against the reference's hull") {
+    const ContactDiff d = diff_contacts(points_at({Vec3(2, 0.5, 1)}, z, 0.01), square);
+    CHECK_FALSE(d.reference_tested);
+    CHECK(std::abs(*d.hull_distance - 1.0) < 1e-15);
+  }
+  SECTION("no points on one side") {
+    const ContactDiff d = diff_contacts(square, Manifold{});
+    CHECK(d.reference_points == 0);
+    CHECK_FALSE(d.normal_angle);
+    CHECK_FALSE(d.hausdorff);
+    CHECK(d.inside_hull);
+  }
 }

@@ -26,6 +26,7 @@ int run_contacts(const ContactsOptions& options);
 
 // `boxpile run SCENE.json --engine NAME [--dt DT] [--duration T] [--every K] [--out FILE.json]`:
 // steps the scene in one engine; writes the recorded frames to FILE.json, or prints a summary.
+// `--ode-method` and `--iterations` set the reference engines' solver (reference/settings.hpp).
 struct RunOptions {
   std::string scene;
   std::string engine;
@@ -33,6 +34,8 @@ struct RunOptions {
   std::optional<double> duration;  // s; the scene's when absent
   int every = 10;                  // steps between recorded frames
   std::string out;                 // empty: print a summary instead
+  std::string ode_method = "quickstep";  // ReferenceSettings::ode_method
+  std::optional<int> iterations;   // ODE QuickStep or Bullet solver iterations; the default's when absent
 };
 void add_run_command(CLI::App& app, RunOptions& options);
 int run_run(const RunOptions& options);

@@ -84,6 +84,12 @@ void add_run_command(CLI::App& app, RunOptions& options) {
       ->capture_default_str();
   cmd->add_option("--out", options.out,
                   "Write the frames as JSON to this file (atomically); without it, print a summary");
+  cmd->add_option("--ode-method", options.ode_method, "ODE's stepper: quickstep (dWorldQuickStep) or step (dWorldStep)")
+      ->check(CLI::IsMember({"quickstep", "step"}))
+      ->capture_default_str();
+  cmd->add_option("--iterations", options.iterations,
+                  "Solver iterations: ODE QuickStep's (default 20) or Bullet's (default 10)")
+      ->check(CLI::PositiveNumber);
 }
 
 int run_run(const RunOptions& options) {
@@ -93,7 +99,13 @@ int run_run(const RunOptions& options) {
   const double dt = scene.time.dt;
   const long steps = std::lround(scene.time.duration / dt);
 
-  const std::unique_ptr<Engine> engine = make_engine(options.engine, scene);
+  ReferenceSettings settings;
+  settings.ode_method = options.ode_method == "step" ? OdeStepMethod::Step : OdeStepMethod::QuickStep;
+  if (options.iterations) {
+    settings.ode_quickstep_iterations = *options.iterations;
+    settings.bullet_iterations = *options.iterations;
+  }
+  const std::unique_ptr<Engine> engine = make_engine(options.engine, scene, settings);
   const bool record = !options.out.empty();
 
   std::vector<BodyState> states;

@@ -1,0 +1,117 @@
+# `boxpile contacts` with the reference engines and `boxpile run`, driven as a user would:
+# exit codes, messages and the JSON they print or write.
+# Run with -DBOXPILE=<the boxpile executable> -DFIXTURES=<fixtures dir> -DWORK=<scratch dir>.
+
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+
+function(fail message)
+  message(SEND_ERROR "${message}")
+endfunction()
+
+# run_boxpile(<expected exit code> <args...>): runs boxpile, sets out and err in the caller.
+function(run_boxpile expected)
+  execute_process(COMMAND "${BOXPILE}" ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE stdout
+                  ERROR_VARIABLE stderr)
+  if(NOT code EQUAL expected)
+    fail("boxpile ${ARGN}: exit ${code}, expected ${expected}\nstdout: ${stdout}\nstderr: ${stderr}")
+  endif()
+  set(out "${stdout}" PARENT_SCOPE)
+  set(err "${stderr}" PARENT_SCOPE)
+endfunction()
+
+function(expect_json json expected)
+  string(JSON value ERROR_VARIABLE error GET "${json}" ${ARGN})
+  if(error OR NOT value STREQUAL expected)
+    fail("JSON ${ARGN}: got '${value}' (${error}), expected '${expected}'")
+  endif()
+endfunction()
+
+# A value matching a regular expression (numbers print as "0.0", "0.5000000000000001", ...).
+function(expect_match json regex)
+  string(JSON value ERROR_VARIABLE error GET "${json}" ${ARGN})
+  if(error OR NOT value MATCHES "${regex}")
+    fail("JSON ${ARGN}: got '${value}' (${error}), expected a match of ${regex}")
+  endif()
+endfunction()
+
+function(expect_length json expected)
+  string(JSON value ERROR_VARIABLE error LENGTH "${json}" ${ARGN})
+  if(error OR NOT value EQUAL expected)
+    fail("JSON length of ${ARGN}: got '${value}' (${error}), expected ${expected}")
+  endif()
+endfunction()
+
+function(expect_contains text fragment)
+  string(FIND "${text}" "${fragment}" at)
+  if(at EQUAL -1)
+    fail("expected '${fragment}' in:\n${text}")
+  endif()
+endfunction()
+
+# --- contacts: all three engines with diffs ---
+run_boxpile(0 contacts "${FIXTURES}/contacts/yaw45_octagon.json")
+expect_length("${out}" 8 engines own contacts)
+expect_length("${out}" 8 engines ode contacts)
+expect_length("${out}" 4 engines bullet contacts)  # Bullet caps box-box at 4
+expect_json("${out}" 4 diff bullet points bullet)
+expect_match("${out}" "^0(\\.0)?$" diff ode normal_angle)
+expect_json("${out}" ON diff bullet smaller_inside_hull)
+expect_json("${out}" box-box kind)
+
+run_boxpile(0 contacts "${FIXTURES}/contacts/plane_flat.json")
+expect_length("${out}" 4 engines)  # own, ode, bullet and bullet_multipoint
+expect_length("${out}" 1 engines bullet contacts)
+expect_json("${out}" box-plane kind)
+
+run_boxpile(0 contacts "${FIXTURES}/contacts/aligned_offset.json" --engines ode,own)
+expect_length("${out}" 2 engines)
+expect_length("${out}" 1 diff)
+expect_json("${out}" 4 diff ode points ode)
+
+run_boxpile(0 contacts "${FIXTURES}/contacts/aligned_offset.json" --engines bullet)
+string(JSON diff ERROR_VARIABLE no_diff GET "${out}" diff)
+if(NOT no_diff)
+  fail("contacts --engines bullet: a diff without own")
+endif()
+
+run_boxpile(2 contacts "${FIXTURES}/contacts/aligned_offset.json" --engines own,physx)
+expect_contains("${err}" "physx")
+
+# --- run ---
+run_boxpile(0 run "${FIXTURES}/scenes/stack_5.json" --engine ode --duration 0.5)
+expect_contains("${out}" "engine ode")
+expect_contains("${out}" "120 steps")
+
+run_boxpile(0 run "${FIXTURES}/scenes/stack_5.json" --engine bullet --duration 0.5 --every 10
+            --out "${WORK}/run.json")
+if(NOT out STREQUAL "")
+  fail("run --out printed to stdout: ${out}")
+endif()
+file(READ "${WORK}/run.json" run)
+expect_json("${run}" bullet engine)
+expect_json("${run}" stack_5 scene)
+expect_json("${run}" 120 steps)
+expect_length("${run}" 13 frames)  # steps 0, 10, ..., 120
+expect_length("${run}" 5 final bodies)
+expect_json("${run}" b4 final bodies 4 name)
+expect_length("${run}" 4 frames 0 bodies 0 orientation)
+expect_json("${run}" 0 frames 0 contacts)
+expect_match("${run}" "^(0\\.50*[0-9]?|0\\.49999999999999[0-9]*)$" final t)
+
+run_boxpile(0 run "${FIXTURES}/scenes/stack_5.json" --engine ode --dt 0.01 --duration 0.1 --out "${WORK}/dt.json")
+file(READ "${WORK}/dt.json" run)
+expect_json("${run}" 10 steps)
+expect_match("${run}" "^0\\.01$" dt)
+
+run_boxpile(2 run "${FIXTURES}/scenes/stack_5.json" --engine own)
+expect_contains("${err}" "not yet available")
+run_boxpile(2 run "${FIXTURES}/scenes/stack_5.json" --engine physx)
+expect_contains("${err}" "unknown engine \"physx\"; available: ode, bullet")
+run_boxpile(2 run "${FIXTURES}/bad/overlap.json" --engine ode)
+expect_contains("${err}" "overlap.json")
+run_boxpile(2 run "${WORK}/missing.json" --engine ode)
+expect_contains("${err}" "missing.json")
+run_boxpile(2 run "${FIXTURES}/scenes/stack_5.json" --engine ode --dt -1)
+run_boxpile(1 run "${FIXTURES}/scenes/stack_5.json" --engine ode --duration 0.1 --out "${WORK}/no/such/dir/x.json")
+expect_contains("${err}" "x.json")
