@@ -62,7 +62,7 @@ constexpr double kFaceBiasAbsolute = 1e-6 / 0.95;  // times the largest half ext
 
 // Bullet's port of dBoxBox adds 1e-5 to every |C_ij| before the edge-axis tests (fudge2 in
 // btBoxBoxDetector.cpp), so its edge-edge depth exceeds the true one by
-// 1e-5 (a_i1 + a_i2 + b_j1 + b_j2) / |Ai x Bj|. ODE 0.16 dropped that term.
+// 1e-5 (a_i1 + a_i2 + b_j1 + b_j2) / |Ai x Bj|. ODE 0.16 has no such term (fixture crossing_edges).
 constexpr double kBulletEdgeFudge = 1e-5;
 
 bool is_face(FeatureKind k) { return k == FeatureKind::FaceA || k == FeatureKind::FaceB; }
@@ -789,6 +789,30 @@ TEST_CASE("a compound rests on the ground with its scene frame where the file pu
     INFO("frame at " << s.position.transpose());
     CHECK((s.position - Vec3(0, 0, 0.25)).norm() < 1e-3);
     CHECK(s.orientation.angularDistance(Quat::Identity()) < 1e-3);
+  }
+}
+
+TEST_CASE("a fixed body holds up a box and never moves", "[reference]") {
+  // No ground: a fixed 4 x 4 x 1 m slab turned 30 degrees about z (its top face at z = 0), and a
+  // unit cube resting on it. The slab reports its pose and zero velocity; the cube stays up.
+  Scene scene = empty_scene(Effects{true, true, false, false, false}, false);
+  BodyDesc slab;
+  slab.name = "slab";
+  slab.fixed = true;
+  slab.mass = 0.0;
+  slab.boxes = {BoxShape{Vec3(2, 2, 0.5), Vec3::Zero(), Quat::Identity()}};
+  slab.frame = Pose{Vec3(0, 0, -0.5), Quat(Eigen::AngleAxisd(M_PI / 6, Vec3::UnitZ()))};
+  scene.bodies = {slab, unit_box("cube", Vec3(0.3, 0.2, 0.5))};
+  for (const char* name : kReferenceEngines) {
+    INFO(name);
+    const auto engine = make_engine(name, scene);
+    run(*engine, 240);
+    const std::vector<BodyState> s = states_of(*engine);
+    CHECK((s[0].position - slab.frame.position).norm() < 1e-12);
+    CHECK(s[0].orientation.angularDistance(slab.frame.orientation) < 1e-12);
+    CHECK(s[0].velocity.norm() == 0.0);
+    CHECK(std::abs(s[1].position.z() - 0.5) < 1e-3);
+    CHECK(s[1].velocity.norm() < 1e-2);
   }
 }
 
