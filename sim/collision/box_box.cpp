@@ -53,7 +53,9 @@ AxisTests prepare(const OrientedBox& a, const OrientedBox& b) {
   return at;
 }
 
-// A vertex or clip point of the incident face, with the id of the feature that made it.
+// A vertex or clip point of the incident face in the reference face's frame (x, y along its
+// two side axes, z along its outward normal, origin at the reference box's centre), with the id
+// of the feature that made it.
 struct ClipPoint {
   Vec3 p;
   int sub;       // see FeatureId: 0..3 vertex, 4 + 4e + p edge crossing, 20 + 4q + p plane corner
@@ -66,33 +68,28 @@ struct ClipPolygon {
   int n = 0;
 };
 
-// Sutherland-Hodgman: keep the part of `in` with u . x <= h; new edges lie on plane `plane`.
-ClipPolygon clip(const ClipPolygon& in, const Vec3& u, double h, int plane) {
-  ClipPolygon out;
+// Sutherland-Hodgman: keeps into `out` the part of `in` with sign * x[axis] <= h; new edges lie
+// on side plane `plane`. In the reference frame each side plane is a coordinate bound.
+void clip(const ClipPolygon& in, int axis, double sign, double h, int plane, ClipPolygon& out) {
+  out.n = 0;
   for (int k = 0; k < in.n; ++k) {
     const ClipPoint& cur = in.pts[k];
     const ClipPoint& next = in.pts[(k + 1) % in.n];
-    const double dc = u.dot(cur.p) - h;
-    const double dn = u.dot(next.p) - h;
+    const double dc = sign * cur.p[axis] - h;
+    const double dn = sign * next.p[axis] - h;
     if (dc <= 0.0) {
       // The edge leaving cur keeps its tag unless it exits through the plane below.
-      out.pts[out.n++] = {cur.p, cur.sub, cur.edge_tag};
+      out.pts[out.n++] = cur;
     }
     if ((dc <= 0.0) != (dn <= 0.0)) {
       const double s = dc / (dc - dn);
       const Vec3 x = cur.p + s * (next.p - cur.p);
       const int sub = cur.edge_tag < 4 ? 4 + 4 * cur.edge_tag + plane
                                        : 20 + 4 * (cur.edge_tag - 4) + plane;
-      if (dc <= 0.0) {
-        // Exiting: the kept edge now ends at x, and the polygon continues along the plane.
-        out.pts[out.n++] = {x, sub, 4 + plane};
-      } else {
-        // Entering: from x on, the polygon follows cur's edge.
-        out.pts[out.n++] = {x, sub, cur.edge_tag};
-      }
+      // Exiting, the polygon continues along the plane; entering, it follows cur's edge.
+      out.pts[out.n++] = {x, sub, dc <= 0.0 ? 4 + plane : cur.edge_tag};
     }
   }
-  return out;
 }
 
 // Index of the axis (0..2) of `box` most (anti)parallel to u, with the sign of Bk . u.
@@ -122,34 +119,43 @@ void face_contacts(const OrientedBox& ref, const OrientedBox& inc, int ref_axis,
   const Vec3 up = inc.half[p] * inc.axes.col(p);
   const Vec3 uq = inc.half[q] * inc.axes.col(q);
 
+  // The reference frame: side axes u (x) and w (y), outward normal m (z), origin at ref's centre.
+  const int ju = (ref_axis + 1) % 3;
+  const int jw = (ref_axis + 2) % 3;
+  Mat3 frame;  // rows: u, w, m
+  frame.row(0) = ref.axes.col(ju).transpose();
+  frame.row(1) = ref.axes.col(jw).transpose();
+  frame.row(2) = m.transpose();
+  const Vec3 c = frame * (face_center - ref.center);
+  const Vec3 lp = frame * up;
+  const Vec3 lq = frame * uq;
+
   // Vertices counter-clockwise in (p, q): (+,+), (-,+), (-,-), (+,-); edge k runs k -> k+1.
-  ClipPolygon poly;
+  ClipPolygon poly, scratch;
   poly.n = 4;
-  poly.pts[0] = {face_center + up + uq, 0, 0};
-  poly.pts[1] = {face_center - up + uq, 1, 1};
-  poly.pts[2] = {face_center - up - uq, 2, 2};
-  poly.pts[3] = {face_center + up - uq, 3, 3};
+  poly.pts[0] = {c + lp + lq, 0, 0};
+  poly.pts[1] = {c - lp + lq, 1, 1};
+  poly.pts[2] = {c - lp - lq, 2, 2};
+  poly.pts[3] = {c + lp - lq, 3, 3};
 
-  // Side planes of the reference face: +-Aj . (x - c) <= a_j for its two other axes.
-  int plane = 0;
-  for (int k = 1; k <= 2; ++k) {
-    const int j = (ref_axis + k) % 3;
-    const Vec3 u = ref.axes.col(j);
-    const double c = u.dot(ref.center);
-    poly = clip(poly, u, c + ref.half[j], plane++);
-    poly = clip(poly, -u, -c + ref.half[j], plane++);
-  }
+  // Side planes of the reference face, planes 0..3: x <= a_u, -x <= a_u, y <= a_w, -y <= a_w.
+  clip(poly, 0, 1.0, ref.half[ju], 0, scratch);
+  clip(scratch, 0, -1.0, ref.half[ju], 1, poly);
+  clip(poly, 1, 1.0, ref.half[jw], 2, scratch);
+  clip(scratch, 1, -1.0, ref.half[jw], 3, poly);
 
-  const double h_ref = m.dot(ref.center) + ref.half[ref_axis];
+  const double h_ref = ref.half[ref_axis];
   const Vec3 normal = ref_is_a ? Vec3(-m) : m;  // from B toward A
   const FeatureKind kind = ref_is_a ? FeatureKind::FaceA : FeatureKind::FaceB;
   for (int k = 0; k < poly.n; ++k) {
     const ClipPoint& cp = poly.pts[k];
-    const double depth = h_ref - m.dot(cp.p);
+    const double depth = h_ref - cp.p.z();
     if (depth < -settings.margin) continue;
     const FeatureId id = ref_is_a ? FeatureId::make(kind, ref_face, inc_face, cp.sub)
                                   : FeatureId::make(kind, inc_face, ref_face, cp.sub);
-    out.push_back({cp.p + 0.5 * depth * m, normal, depth, id});
+    // Midway between the point (height z) and its projection on the face (height h_ref).
+    const Vec3 local(cp.p.x(), cp.p.y(), cp.p.z() + 0.5 * depth);
+    out.push_back({ref.center + frame.transpose() * local, normal, depth, id});
   }
 }
 
@@ -189,7 +195,7 @@ Edge extreme_edge(const OrientedBox& box, int i, const Vec3& e) {
 
 }  // namespace
 
-SatResult box_box_sat(const OrientedBox& a, const OrientedBox& b) {
+SatResult box_box_sat(const OrientedBox& a, const OrientedBox& b, double stop_above) {
   const AxisTests at = prepare(a, b);
   const Mat3& C = at.C;
   const Mat3& absC = at.absC;
@@ -202,6 +208,7 @@ SatResult box_box_sat(const OrientedBox& a, const OrientedBox& b) {
     const double sep = std::abs(t[i]) - (a.half[i] + absC.row(i).dot(b.half));
     if (sep > face.separation) {
       face = {sep, -sign_of(t[i]) * a.axes.col(i), FeatureKind::FaceA, i, 0};
+      if (sep > stop_above) return face;
     }
   }
   // B's face axes: s = |d . Bj| - (b_j + sum_i a_i |C_ij|).
@@ -210,40 +217,50 @@ SatResult box_box_sat(const OrientedBox& a, const OrientedBox& b) {
     const double sep = std::abs(dj) - (b.half[j] + absC.col(j).dot(a.half));
     if (sep > face.separation) {
       face = {sep, -sign_of(dj) * b.axes.col(j), FeatureKind::FaceB, 0, j};
+      if (sep > stop_above) return face;
     }
   }
 
   // Edge axes L = Ai x Bj. In A's frame L = e_i x C_j, so with i1 = i+1, i2 = i+2 (mod 3):
   //   |L| = sqrt(C_i1j^2 + C_i2j^2),  (cB - cA) . L = t_i2 C_i1j - t_i1 C_i2j,
   //   rA = a_i1 |C_i2j| + a_i2 |C_i1j|,  rB = b_j1 |C_ij2| + b_j2 |C_ij1|.
-  SatResult edge;
-  edge.separation = -std::numeric_limits<double>::infinity();
+  double edge_sep = -std::numeric_limits<double>::infinity();
+  int edge_i = 0, edge_j = 0;
+  double edge_len = 1.0, edge_sign = 1.0;
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
       const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const double len = std::hypot(C(i1, j), C(i2, j));
+      // |C| <= 1, so the plain root cannot overflow (std::hypot's care costs twice the time).
+      const double len = std::sqrt(C(i1, j) * C(i1, j) + C(i2, j) * C(i2, j));
       if (len < kParallelEdgeSin) continue;
       const double dl = t[i2] * C(i1, j) - t[i1] * C(i2, j);
       const double ra = a.half[i1] * absC(i2, j) + a.half[i2] * absC(i1, j);
       const double rb = b.half[j1] * absC(i, j2) + b.half[j2] * absC(i, j1);
       const double sep = (std::abs(dl) - ra - rb) / len;
-      if (sep > edge.separation) {
-        const Vec3 axis = a.axes.col(i).cross(b.axes.col(j)) / len;
-        edge = {sep, -sign_of(dl) * axis, FeatureKind::EdgeEdge, i, j};
+      if (sep > edge_sep) {
+        edge_sep = sep;
+        edge_i = i;
+        edge_j = j;
+        edge_len = len;
+        edge_sign = -sign_of(dl);
+        if (sep > stop_above) break;
       }
     }
+    if (edge_sep > stop_above) break;
   }
 
   const double scale = std::max(a.half.maxCoeff(), b.half.maxCoeff());
   const double bias = kFaceBiasRelative * std::abs(face.separation) + kFaceBiasAbsolute * scale;
-  return edge.separation > face.separation + bias ? edge : face;
+  if (!(edge_sep > face.separation + bias)) return face;
+  const Vec3 axis = a.axes.col(edge_i).cross(b.axes.col(edge_j)) / edge_len;
+  return {edge_sep, edge_sign * axis, FeatureKind::EdgeEdge, edge_i, edge_j};
 }
 
 void collide_box_box(const OrientedBox& a, const OrientedBox& b, const CollisionSettings& settings,
                      Manifold& out) {
   out.clear();
-  const SatResult sat = box_box_sat(a, b);
+  const SatResult sat = box_box_sat(a, b, settings.margin);
   if (sat.separation > settings.margin) return;
 
   switch (sat.kind) {

@@ -2,6 +2,8 @@
 // Erleben's thesis pp. 178-183), written for boxpile from the math.
 #pragma once
 
+#include <limits>
+
 #include "sim/collision/box.hpp"
 #include "sim/collision/contact.hpp"
 #include "sim/scene.hpp"
@@ -19,7 +21,10 @@ struct SatResult {
 
 // Separating-axis test over the 15 axes: A's 3 face normals, B's 3, and the 9 edge cross products
 // (near-parallel edge pairs skipped). On near-ties faces win over edges (see box_box.cpp).
-SatResult box_box_sat(const OrientedBox& a, const OrientedBox& b);
+// The test stops at the first axis that separates by more than `stop_above`; the separation
+// returned is then a lower bound of the largest one (the default tests every axis).
+SatResult box_box_sat(const OrientedBox& a, const OrientedBox& b,
+                      double stop_above = std::numeric_limits<double>::infinity());
 
 // The contact set of two boxes: a clipped face polygon (up to 8 points) or one edge-edge point.
 // `out` is cleared first and left empty when the boxes are separated by more than settings.margin.
