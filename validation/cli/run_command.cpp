@@ -8,13 +8,36 @@
 #include "sim/io/scene_loader.hpp"
 #include "validation/cli/commands.hpp"
 #include "validation/cli/json_output.hpp"
+#include "sim/world.hpp"
 #include "validation/engine_factory.hpp"
+#include "validation/state_meter.hpp"
 
 namespace boxpile::cli {
 namespace {
 
 // Up to this many bodies the human summary lists each one; above it, the extremes only.
 constexpr std::size_t kSummaryBodyLimit = 10;
+
+nlohmann::json metrics_json(const FrameMetrics& m) {
+  return {{"energy", {{"kinetic", m.energy.kinetic()}, {"potential", m.energy.potential}, {"total", m.energy.total()}}},
+          {"max_penetration", m.penetration.depth},
+          {"levitation", m.levitation}};
+}
+
+// Our solver's statistics of its last step: passes used and the residual (largest approaching
+// normal velocity, m/s) after each pass, for the convergence plots.
+nlohmann::json solver_json(const World& world) {
+  const StepStats& st = world.last_step_stats();
+  nlohmann::json collision = nlohmann::json::array(), contact = nlohmann::json::array();
+  for (int k = 0; k < st.collision_passes_used; ++k) collision.push_back(st.collision_residual[k]);
+  for (int k = 0; k < st.contact_passes_used; ++k) contact.push_back(st.contact_residual[k]);
+  return {{"collision_passes", st.collision_passes_used},
+          {"collision_residuals", collision},
+          {"contact_residuals", contact},
+          {"shock_levels", st.shock_levels},
+          {"residual_after_shock", st.residual_after_shock},
+          {"collision_events", world.events().size()}};
+}
 
 nlohmann::json bodies_json(const std::vector<BodyState>& states) {
   nlohmann::json bodies = nlohmann::json::array();
@@ -74,7 +97,7 @@ void print_summary(const Scene& scene, std::string_view engine, long steps, doub
 void add_run_command(CLI::App& app, RunOptions& options) {
   CLI::App* cmd = app.add_subcommand("run", "Step a scene in one engine and record the bodies' states");
   cmd->add_option("scene", options.scene, "Scene file (JSON, docs/scene-format.md)")->required();
-  cmd->add_option("--engine", options.engine, "Engine: ode or bullet (own arrives with the solver issue)")
+  cmd->add_option("--engine", options.engine, "Engine: own, ode or bullet")
       ->required();
   cmd->add_option("--dt", options.dt, "Time step in s (default: the scene's)")->check(CLI::PositiveNumber);
   cmd->add_option("--duration", options.duration, "Simulated time in s (default: the scene's)")
@@ -111,10 +134,15 @@ int run_run(const RunOptions& options) {
   std::vector<BodyState> states;
   std::vector<BodyContact> contacts;
   nlohmann::json frames = nlohmann::json::array();
+  StateMeter meter(scene);
+  const auto* own = dynamic_cast<const World*>(engine.get());
   auto add_frame = [&] {
     engine->body_states(states);
     engine->contacts(contacts);
-    frames.push_back({{"t", engine->time()}, {"bodies", bodies_json(states)}, {"contacts", contacts.size()}});
+    nlohmann::json frame = {{"t", engine->time()}, {"bodies", bodies_json(states)}, {"contacts", contacts.size()}};
+    frame.update(metrics_json(meter.measure(states)));
+    if (own) frame["solver"] = solver_json(*own);
+    frames.push_back(std::move(frame));
   };
 
   using Clock = std::chrono::steady_clock;
@@ -143,16 +171,29 @@ int run_run(const RunOptions& options) {
   }
 
   if (record) {
+    nlohmann::json events = nlohmann::json::array();
+    if (own) {
+      for (const CollisionEvent& e : own->events()) {
+        events.push_back({{"t", e.time}, {"body_a", states[e.body_a].name},
+                          {"body_b", e.body_b == kGround ? std::string("ground") : states[e.body_b].name},
+                          {"impulse", e.impulse}, {"approach_speed", e.approach_speed}});
+      }
+    }
     const nlohmann::json doc = {{"scene", scene.name},
                                 {"engine", options.engine},
                                 {"dt", dt},
                                 {"steps", steps},
                                 {"wall_seconds", wall},
                                 {"frames", std::move(frames)},
-                                {"final", {{"t", engine->time()}, {"bodies", bodies_json(states)}}}};
+                                {"final", {{"t", engine->time()}, {"bodies", bodies_json(states)}}},
+                                {"events", std::move(events)}};
     write_json_file(doc, options.out);
   } else {
     print_summary(scene, options.engine, steps, wall, states, contacts.size());
+    const FrameMetrics m = meter.measure(states);
+    std::cout << "energy " << format(m.energy.total(), "%.6g") << " J (kinetic " << format(m.energy.kinetic(), "%.3g")
+              << " J), deepest penetration " << format(m.penetration.depth, "%.3g") << " m, levitation "
+              << format(m.levitation, "%.3g") << " m\n";
   }
   return blew_up ? kExitFailure : kExitOk;
 }

@@ -1,0 +1,29 @@
+// Measures any engine's body states the same way (energy, penetration, levitation), by posing
+// our own bodies at the reported states: ODE, Bullet and our engine get one ruler.
+#pragma once
+
+#include <vector>
+
+#include "sim/engine.hpp"
+#include "sim/metrics.hpp"
+#include "sim/scene.hpp"
+
+namespace boxpile {
+
+struct FrameMetrics {
+  Energy energy;
+  Penetration penetration;
+  double levitation = 0.0;  // m
+};
+
+class StateMeter {
+ public:
+  explicit StateMeter(const Scene& scene);
+  FrameMetrics measure(const std::vector<BodyState>& states);
+
+ private:
+  const Scene& scene_;
+  std::vector<RigidBody> bodies_;
+};
+
+}  // namespace boxpile
