@@ -78,10 +78,14 @@ void clip(const ClipPolygon& in, int axis, double sign, double h, int plane, Cli
     const double dc = sign * cur.p[axis] - h;
     const double dn = sign * next.p[axis] - h;
     if (dc <= 0.0) {
-      // The edge leaving cur keeps its tag unless it exits through the plane below.
+      // The edge leaving cur keeps its tag, unless cur lies on the plane and the polygon leaves
+      // along it, or exits through it below.
       out.pts[out.n++] = cur;
+      if (dc == 0.0 && dn > 0.0) out.pts[out.n - 1].edge_tag = 4 + plane;
     }
-    if ((dc <= 0.0) != (dn <= 0.0)) {
+    // A crossing strictly between the two points; a point lying on the plane is itself kept
+    // (once) and makes no second, identical crossing.
+    if ((dc < 0.0 && dn > 0.0) || (dc > 0.0 && dn < 0.0)) {
       const double s = dc / (dc - dn);
       const Vec3 x = cur.p + s * (next.p - cur.p);
       const int sub = cur.edge_tag < 4 ? 4 + 4 * cur.edge_tag + plane
