@@ -100,6 +100,7 @@ void World::prepare_solver_contacts() {
     c.restitution = m.restitution;
     if (!a.fixed) c.Ka = collision_matrix_share(a, c.ra);
     if (!b.fixed) c.Kb = collision_matrix_share(b, c.rb);
+    set_collision_matrix(c, !a.fixed, !b.fixed);
     solver_contacts_.push_back(c);
   }
 }

@@ -32,13 +32,18 @@ struct SolverContact {
   double depth = 0.0;
   double friction = 0.0;     // mu
   double restitution = 0.0;  // e
-  Mat3 Ka = Mat3::Zero();    // 1/mA E - [rA]x IA^-1 [rA]x (zero for a fixed or frozen body)
+  Mat3 Ka = Mat3::Zero();    // 1/mA E - [rA]x IA^-1 [rA]x (zero for a fixed body)
   Mat3 Kb = Mat3::Zero();
+  // The collision matrix the current phase uses and its inverse: Ka + Kb, or in shock
+  // propagation the share of the bodies that still move. Set once per phase, not per impulse.
+  Mat3 K = Mat3::Zero();
+  Mat3 Kinv = Mat3::Zero();
   bool active = true;        // the collision loop drops contacts that separate
   // Resting phase (contact loop and shock propagation): the normal velocity at the loop's start
   // and the impulse accumulated over the phase so far.
   double start_un = 0.0;
   Vec3 accumulated = Vec3::Zero();
+  Vec3 slide_dir = Vec3::Zero();  // unit tangential direction if sliding at the start, else 0
 };
 
 // Body A's share of K at offset r: (1/m) E - [r]x I^-1 [r]x.
@@ -52,20 +57,27 @@ struct ImpulseCounters {
   std::uint64_t sliding = 0;               // impulses clamped to the friction cone
 };
 
-// The impulse on A for relative velocity u, restitution e (may be negative in the contact loop's
-// ramp: -1 < e <= 1), friction on or off; K = Ka + Kb with frozen bodies' shares left out.
+// Sets c.K and c.Kinv from the shares of the bodies that move (a fixed body has a zero share).
+void set_collision_matrix(SolverContact& c, bool a_moves, bool b_moves);
+
+// The impulse on A for relative velocity u, restitution e, friction on or off, with c.K.
 // Returns zero when the point does not approach (u_n >= 0).
-Vec3 newton_coulomb_impulse(const SolverContact& c, const Mat3& K, const Vec3& u, double e,
-                            bool friction, ImpulseCounters& counters);
+Vec3 newton_coulomb_impulse(const SolverContact& c, const Vec3& u, double e, bool friction,
+                            ImpulseCounters& counters);
+
+// Starts a resting phase at a contact whose relative velocity is u: records u_n, clears the
+// accumulated impulse, and fixes the sliding direction (zero when the point barely slides).
+void begin_resting_phase(SolverContact& c, const Vec3& u);
 
 // Resting contacts: one projected Gauss-Seidel update of the impulse accumulated over the
 // resting phase. It asks for normal velocity `target_un` and (with friction) no sliding,
 // Delta j = K^-1 (target_un n - u), then projects the accumulated impulse J + Delta j on the
-// friction cone (J_n >= 0, |J_t| <= mu J_n). Unlike a lone push-only impulse it may take back
-// part of what it gave earlier in the phase, so the sequential passes converge to the impulses
-// that hold every point of a resting face together (the push-only form leaves a box lifting
-// and drifting: docs/solver.md). Updates c.accumulated; returns the impulse to apply on A now.
-Vec3 resting_impulse(SolverContact& c, const Mat3& K, const Vec3& u, double target_un, bool friction,
+// friction cone (J_n >= 0, |J_t| <= mu J_n); outside it, the point slides and the total is
+// J_n (n - mu t) against the sliding direction t. Unlike a lone push-only impulse it may take
+// back part of what it gave earlier in the phase, so the sequential passes converge to the
+// impulses that hold every point of a resting face together (the push-only form leaves a box
+// lifting and drifting: docs/solver.md). Updates c.accumulated; returns the impulse on A now.
+Vec3 resting_impulse(SolverContact& c, const Vec3& u, double target_un, bool friction,
                      ImpulseCounters& counters);
 
 }  // namespace boxpile

@@ -37,7 +37,7 @@ void collision_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int 
       // A point still apart collides only if it would close its gap within the step.
       if (c.n.dot(u) >= allow_gap(c, 0.0, dt)) continue;
       const double e = restitution ? c.restitution : 0.0;
-      const Vec3 j = newton_coulomb_impulse(c, c.Ka + c.Kb, u, e, friction, counters);
+      const Vec3 j = newton_coulomb_impulse(c, u, e, friction, counters);
       sb.apply(c, j, true, true);
       const double approach = -c.n.dot(u);
       if (approach > event_speed) {
@@ -65,10 +65,7 @@ void collision_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int 
 void contact_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int passes, bool friction,
                   double dt, ImpulseCounters& counters, StepStats& stats) {
   assert(passes <= kMaxSolverPasses);
-  for (SolverContact& c : contacts) {
-    c.start_un = c.n.dot(sb.relative_velocity(c));
-    c.accumulated.setZero();
-  }
+  for (SolverContact& c : contacts) begin_resting_phase(c, sb.relative_velocity(c));
   for (int pass = 0; pass < passes; ++pass) {
     // e = -1 would leave velocities unchanged; the ramp starts one step above it and ends at 0,
     // slowing resting contacts gradually instead of stopping the first one met at full force.
@@ -76,7 +73,7 @@ void contact_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int pa
     const double e = -1.0 + static_cast<double>(pass + 1) / passes;
     for (SolverContact& c : contacts) {
       const double target = allow_gap(c, c.start_un < 0.0 ? -e * c.start_un : 0.0, dt);
-      const Vec3 j = resting_impulse(c, c.Ka + c.Kb, sb.relative_velocity(c), target, friction, counters);
+      const Vec3 j = resting_impulse(c, sb.relative_velocity(c), target, friction, counters);
       sb.apply(c, j, true, true);
     }
     stats.contact_residual[pass] = approach_residual(sb, contacts, dt);
@@ -150,15 +147,17 @@ void ShockPropagation::run(SolverBodies& sb, std::vector<SolverContact>& contact
 
   // Solve level by level with e = 0; bodies below the level are frozen (infinite mass), so
   // nothing pushes back down the pile and the stack's weight is carried by the ground.
+  auto moves = [&](int body, int l) { return body >= 0 && level_of(body) == l; };
   for (int l = 0; l <= top; ++l) {
+    for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
+      SolverContact& c = contacts[by_level_[k]];
+      if (!(moves(c.a, l) && moves(c.b, l))) set_collision_matrix(c, moves(c.a, l), moves(c.b, l));
+    }
     for (int pass = 0; pass < passes; ++pass) {
       for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
         SolverContact& c = contacts[by_level_[k]];
-        const bool a_moves = level_of(c.a) == l;
-        const bool b_moves = level_of(c.b) == l;
-        const Mat3 K = (a_moves ? c.Ka : Mat3::Zero()) + (b_moves ? c.Kb : Mat3::Zero());
-        const Vec3 j = resting_impulse(c, K, sb.relative_velocity(c), allow_gap(c, 0.0, dt), friction, counters);
-        sb.apply(c, j, a_moves, b_moves);
+        const Vec3 j = resting_impulse(c, sb.relative_velocity(c), allow_gap(c, 0.0, dt), friction, counters);
+        sb.apply(c, j, moves(c.a, l), moves(c.b, l));
       }
     }
   }
