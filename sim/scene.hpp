@@ -47,6 +47,7 @@ struct SolverSettings {
   int collision_passes = 5;       // GBF collision loop passes (5-10)
   int contact_passes = 10;        // GBF contact loop passes, restitution ramped -0.9 -> 0 (10-20)
   bool shock_propagation = true;  // GBF shock propagation after the contact loop
+  int shock_passes = 20;          // most passes over one level in shock propagation (fewer once converged)
   PositionIntegrator integrator = PositionIntegrator::ExplicitEuler;
   // Points this far apart (m) are kept in the step's contact set, so that a resting face whose
   // corners rise by rounding (1e-17 m) does not lose them and tip; the solver lets such a point
@@ -57,6 +58,15 @@ struct SolverSettings {
 struct TimeSettings {
   double dt = 1.0 / 240.0;  // s
   double duration = 5.0;    // s
+};
+
+// A wire: the body's anchor point slides without friction along the segment from `from` to `to`
+// (and stops at its ends), while the body swings freely about the anchor. The mission's "bone"
+// is a compound body with a wire.
+struct Wire {
+  Vec3 from = Vec3::Zero();    // m, world
+  Vec3 to = Vec3::UnitX();     // m, world
+  Vec3 anchor = Vec3::Zero();  // m, in the body frame (the scene file's frame, not the centre of mass)
 };
 
 // One body as the scene file describes it. `frame` is the body frame (where `boxes` are placed);
@@ -70,6 +80,7 @@ struct BodyDesc {
   Vec3 angular_velocity = Vec3::Zero();  // rad/s, world
   std::optional<Material> material;      // falls back to the scene default
   bool fixed = false;
+  std::optional<Wire> wire;  // constrained to a wire (the bone); unset for ordinary bodies
 };
 
 struct Scene {

@@ -56,7 +56,7 @@ void World::step() {
 
   // 5. Shock propagation: from the ground up, each level frozen once solved.
   if (s.shock_propagation) {
-    shock_.run(sb, solver_contacts_, s.contact_passes, fx.friction, scene_.time.dt, counters_.impulses, stats_);
+    shock_.run(sb, solver_contacts_, s.shock_passes, fx.friction, scene_.time.dt, counters_.impulses, stats_);
     ++counters_.shock_propagation_runs;
   }
 

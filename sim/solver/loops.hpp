@@ -30,6 +30,7 @@ inline double allow_gap(const SolverContact& c, double target, double dt) {
   std::array<double, kMaxSolverPasses> contact_residual{};
   int contact_passes_used = 0;
   int shock_levels = 0;
+  int shock_passes_used = 0;  // summed over the levels
   double residual_after_shock = 0.0;
 };
 
@@ -71,8 +72,9 @@ void contact_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int pa
                   double dt, ImpulseCounters& counters, StepStats& stats);
 
 // Shock propagation: bodies sorted into levels by contact-graph distance from the ground and
-// fixed bodies; level by level from the bottom, `passes` passes with e = 0 over the contacts
-// that reach down from the level, with every lower level frozen (infinite mass).
+// fixed bodies; level by level from the bottom, up to `passes` passes with e = 0 over the
+// contacts that reach down from the level (fewer once the level has converged), with every
+// lower level frozen (infinite mass).
 class ShockPropagation {
  public:
   void run(SolverBodies& sb, std::vector<SolverContact>& contacts, int passes, bool friction,
