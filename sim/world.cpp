@@ -16,7 +16,8 @@ Material combine_materials(const Material& a, const Material& b) {
   return {std::sqrt(a.friction * b.friction), std::max(a.restitution, b.restitution)};
 }
 
-World::World(const Scene& scene) : scene_(scene), bodies_(make_bodies(scene)) {
+World::World(const Scene& scene)
+    : scene_(scene), bodies_(make_bodies(scene)), wires_(make_wire_joints(scene, bodies_)) {
   ground_.name = "ground";
   ground_.fixed = true;
   ground_.material = scene.material;
@@ -47,21 +48,25 @@ void World::step() {
                  scene_.time.dt, event_speed, counters_.impulses, stats_, events_);
   ++counters_.collision_loop_runs;
 
-  // 3. External forces on the momenta: gravity, air damping.
+  // 3. External forces on the momenta: gravity, air damping; the wires take their share.
   integrate_momenta();
+  enforce_wires();
 
   // 4. Contact loop: every contact of the set, restitution ramped up to 0.
   contact_loop(sb, solver_contacts_, s.contact_passes, fx.friction, scene_.time.dt, counters_.impulses, stats_);
   ++counters_.contact_loop_runs;
+  enforce_wires();
 
   // 5. Shock propagation: from the ground up, each level frozen once solved.
   if (s.shock_propagation) {
     shock_.run(sb, solver_contacts_, s.shock_passes, fx.friction, scene_.time.dt, counters_.impulses, stats_);
     ++counters_.shock_propagation_runs;
   }
+  enforce_wires();
 
-  // 6. Positions and orientations.
+  // 6. Positions and orientations; wired anchors back onto their wires.
   integrate_positions();
+  project_wires();
   time_ += scene_.time.dt;
   ++counters_.steps;
 }
@@ -152,6 +157,17 @@ void World::integrate_positions() {
       b.L = b.R * b.inertia_body * b.R.transpose() * omega_now;
       b.omega = omega_now;
     }
+  }
+}
+
+void World::enforce_wires() {
+  for (const WireJoint& w : wires_) enforce_wire_velocity(bodies_[w.body], w);
+}
+
+void World::project_wires() {
+  for (const WireJoint& w : wires_) {
+    project_onto_wire(bodies_[w.body], w);
+    bodies_[w.body].update_derived();
   }
 }
 

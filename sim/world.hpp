@@ -11,6 +11,7 @@
 #include "sim/engine.hpp"
 #include "sim/scene.hpp"
 #include "sim/solver/loops.hpp"
+#include "sim/solver/wire.hpp"
 
 namespace boxpile {
 
@@ -44,6 +45,7 @@ class World final : public Engine {
   const StepStats& last_step_stats() const { return stats_; }
   const std::vector<CollisionEvent>& events() const { return events_; }
   const Scene& scene() const { return scene_; }
+  const std::vector<WireJoint>& wires() const { return wires_; }
 
  private:
   // The stages of one step, in the order of the method (see docs/solver.md).
@@ -51,6 +53,10 @@ class World final : public Engine {
   void prepare_solver_contacts();
   void integrate_momenta();
   void integrate_positions();
+  // The wires' velocity constraint on every wired body (the bone), and the projection after the
+  // position update.
+  void enforce_wires();
+  void project_wires();
 
   Scene scene_;
   std::vector<RigidBody> bodies_;
@@ -61,6 +67,7 @@ class World final : public Engine {
   std::vector<BodyContact> contacts_;
   std::vector<SolverContact> solver_contacts_;
   ShockPropagation shock_;
+  std::vector<WireJoint> wires_;
   std::vector<Vec3> start_v_, start_omega_;  // velocities at the step's start (explicit Euler)
   std::vector<CollisionEvent> events_;
   WorldCounters counters_;
