@@ -23,6 +23,12 @@ World::World(const Scene& scene)
   ground_.material = scene.material;
   ground_.update_derived();
   start_v_.resize(bodies_.size());
+  margins_.resize(bodies_.size());
+  for (const RigidBody& b : bodies_) {
+    double r = 0.0;  // the farthest any box corner lies from the centre of mass
+    for (const BoxShape& box : b.shapes) r = std::max(r, box.offset.norm() + box.half_extents.norm());
+    bounding_radius_.push_back(r);
+  }
   start_omega_.resize(bodies_.size());
   contacts_.reserve(8 * bodies_.size());
   solver_contacts_.reserve(8 * bodies_.size());
@@ -73,17 +79,27 @@ void World::step() {
 
 void World::find_contacts() {
   contacts_.clear();
+  // Each body's speculative margin: the scene's contact margin plus how far any of its points
+  // can move in one step, (|v| + |omega| r) dt, so that a fast body meets what it would reach
+  // within the step as a speculative contact instead of tunnelling into it.
+  const double dt = scene_.time.dt;
+  const double base = std::max(scene_.collision.margin, scene_.solver.contact_margin);
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const RigidBody& b = bodies_[i];
+    margins_[i] = base + (b.v.norm() + b.omega.norm() * bounding_radius_[i]) * dt;
+  }
   CollisionSettings cs = scene_.collision;
-  cs.margin = std::max(cs.margin, scene_.solver.contact_margin);
-  for (const auto& [i, j] : broadphase_.find_pairs(bodies_, cs.margin)) {
+  for (const auto& [i, j] : broadphase_.find_pairs(bodies_, margins_)) {
     ++counters_.broadphase_pairs;
     counters_.narrowphase_calls += bodies_[i].shapes.size() * bodies_[j].shapes.size();
+    cs.margin = margins_[i] + margins_[j] - base;
     collide_bodies(bodies_, i, j, cs, contacts_);
   }
   if (!scene_.ground) return;
   for (int i = 0; i < static_cast<int>(bodies_.size()); ++i) {
     if (bodies_[i].fixed) continue;
     counters_.narrowphase_calls += bodies_[i].shapes.size();
+    cs.margin = margins_[i];
     collide_body_ground(bodies_, i, *scene_.ground, cs, contacts_);
   }
 }

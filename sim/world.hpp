@@ -68,7 +68,9 @@ class World final : public Engine {
   std::vector<SolverContact> solver_contacts_;
   ShockPropagation shock_;
   std::vector<WireJoint> wires_;
-  std::vector<Vec3> start_v_, start_omega_;  // velocities at the step's start (explicit Euler)
+  std::vector<Vec3> start_v_, start_omega_;
+  std::vector<double> margins_;          // per body, this step's speculative margin, m
+  std::vector<double> bounding_radius_;  // per body, m  // velocities at the step's start (explicit Euler)
   std::vector<CollisionEvent> events_;
   WorldCounters counters_;
   StepStats stats_;

@@ -21,10 +21,10 @@ Aabb body_aabb(const RigidBody& body, double margin) {
 }
 
 const std::vector<std::pair<int, int>>& SweepAndPrune::find_pairs(const std::vector<RigidBody>& bodies,
-                                                                  double margin) {
+                                                                  const std::vector<double>& margins) {
   const int n = static_cast<int>(bodies.size());
   boxes_.resize(bodies.size());
-  for (int i = 0; i < n; ++i) boxes_[i] = body_aabb(bodies[i], margin);
+  for (int i = 0; i < n; ++i) boxes_[i] = body_aabb(bodies[i], margins[i]);
   if (static_cast<int>(order_.size()) != n) {
     order_.resize(bodies.size());
     std::iota(order_.begin(), order_.end(), 0);

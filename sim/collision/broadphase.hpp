@@ -26,8 +26,10 @@ Aabb body_aabb(const RigidBody& body, double margin);
 // once the first call has sized it.
 class SweepAndPrune {
  public:
-  // The pairs (i < j) of bodies whose boxes overlap, skipping pairs of two fixed bodies.
-  const std::vector<std::pair<int, int>>& find_pairs(const std::vector<RigidBody>& bodies, double margin);
+  // The pairs (i < j) of bodies whose boxes overlap, each box grown by its body's margin
+  // (margins[i], m), skipping pairs of two fixed bodies.
+  const std::vector<std::pair<int, int>>& find_pairs(const std::vector<RigidBody>& bodies,
+                                                     const std::vector<double>& margins);
 
  private:
   std::vector<Aabb> boxes_;

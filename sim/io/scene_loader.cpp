@@ -25,6 +25,10 @@ using json_input::JsonNode;
 // far above it.
 constexpr double kInitialOverlapTolerance = 1e-9;  // m
 
+// The anchor of a wire must start this close to the wire: the same tolerance as the initial
+// overlap, so that positions written in decimal (0.1 + 0.2) still count as on the wire.
+constexpr double kWireStartTolerance = 1e-9;  // m
+
 // The effects vocabulary, in the order of the flags they set.
 constexpr std::array<std::string_view, 5> kEffectNames = {"gravity", "friction", "restitution",
                                                           "damping", "gyroscopic"};
@@ -39,6 +43,15 @@ constexpr std::array<ContactSolver, 2> kSolverMethodValues = {ContactSolver::Imp
 constexpr std::array<std::string_view, 2> kIntegrators = {"explicit_euler", "semi_implicit_euler"};
 constexpr std::array<PositionIntegrator, 2> kIntegratorValues = {
     PositionIntegrator::ExplicitEuler, PositionIntegrator::SemiImplicitEuler};
+
+std::string format_point(const Vec3& p) {
+  std::string s = "[";
+  for (int i = 0; i < 3; ++i) {
+    if (i > 0) s += ", ";
+    s += json_input::format_number(p[i]);
+  }
+  return s + "]";
+}
 
 std::string read_nonempty_string(const JsonNode& node) {
   std::string s = node.string();
@@ -154,6 +167,32 @@ std::vector<BoxShape> read_shape(const JsonNode& body) {
   return shapes;
 }
 
+// A wire: a segment from "from" to "to" (world) and the anchor (body frame) that slides on it.
+// The anchor must start on the segment: an engine would otherwise snap it there in its first
+// step, and each engine would do so differently.
+Wire read_wire(const JsonNode& node, const Pose& frame) {
+  node.expect_object({"from", "to", "anchor"});
+  Wire w;
+  w.from = json_input::read_vec3(node.at("from"));
+  w.to = json_input::read_vec3(node.at("to"));
+  w.anchor = json_input::read_vec3(node.at("anchor"));
+  const Vec3 along = w.to - w.from;
+  const double length = along.norm();
+  if (!(length > 0.0)) {
+    node.fail("zero-length wire: \"from\" and \"to\" are the same point; a wire needs two distinct ends");
+  }
+  const Vec3 start = frame.apply(w.anchor);
+  const double s = std::clamp((start - w.from).dot(along) / (length * length), 0.0, 1.0);
+  const double off = (start - (w.from + s * along)).norm();
+  if (off > kWireStartTolerance) {
+    node.at("anchor").fail("the anchor starts " + json_input::format_number(off) +
+                           " m off the wire (at " + format_point(start) +
+                           " in the world); it must lie on the segment from \"from\" to \"to\" within " +
+                           json_input::format_number(kWireStartTolerance) + " m");
+  }
+  return w;
+}
+
 // A velocity given to a fixed body would be silently lost: say so instead.
 Vec3 read_body_velocity(const JsonNode& body, std::string_view key, bool fixed) {
   const auto node = body.find(key);
@@ -165,7 +204,7 @@ Vec3 read_body_velocity(const JsonNode& body, std::string_view key, bool fixed) 
 
 BodyDesc read_body(const JsonNode& node, const Material& scene_material) {
   node.expect_object({"name", "mass", "half_extents", "boxes", "position", "orientation",
-                      "velocity", "angular_velocity", "fixed", "material"});
+                      "velocity", "angular_velocity", "fixed", "material", "wire"});
   BodyDesc b;
   b.name = read_nonempty_string(node.at("name"));
   b.fixed = node.boolean_or("fixed", false);
@@ -184,6 +223,10 @@ BodyDesc read_body(const JsonNode& node, const Material& scene_material) {
   b.velocity = read_body_velocity(node, "velocity", b.fixed);
   b.angular_velocity = read_body_velocity(node, "angular_velocity", b.fixed);
   if (const auto m = node.find("material")) b.material = read_material(*m, scene_material);
+  if (const auto w = node.find("wire")) {
+    if (b.fixed) w->fail("a fixed body cannot slide on a wire: remove \"wire\" or \"fixed\"");
+    b.wire = read_wire(*w, b.frame);
+  }
   return b;
 }
 

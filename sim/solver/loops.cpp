@@ -34,14 +34,17 @@ void collision_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int 
                     ImpulseCounters& counters, StepStats& stats, std::vector<CollisionEvent>& events) {
   assert(passes <= kMaxSolverPasses);
   const std::size_t first_event = events.size();
+  // A point still apart collides in this step only if it would close its gap within the step;
+  // decided once, before any impulse, so that the points of one face landing together all take
+  // part even after the first of them has slowed the body.
+  for (SolverContact& c : contacts) c.active = c.n.dot(sb.relative_velocity(c)) < allow_gap(c, 0.0, dt);
   for (int pass = 0; pass < passes; ++pass) {
     bool any_active = false;
     for (SolverContact& c : contacts) {
       if (!c.active) continue;
       any_active = true;
       const Vec3 u = sb.relative_velocity(c);
-      // A point still apart collides only if it would close its gap within the step.
-      if (c.n.dot(u) >= allow_gap(c, 0.0, dt)) continue;
+      if (c.n.dot(u) >= 0.0) continue;
       const double e = restitution ? c.restitution : 0.0;
       const Vec3 j = newton_coulomb_impulse(c, u, e, friction, counters);
       sb.apply(c, j, true, true);
@@ -65,7 +68,7 @@ void collision_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int 
     double residual = 0.0;
     for (SolverContact& c : contacts) {
       if (!c.active) continue;
-      const double approach = allow_gap(c, 0.0, dt) - c.n.dot(sb.relative_velocity(c));
+      const double approach = -c.n.dot(sb.relative_velocity(c));
       if (approach <= 0.0) c.active = false;
       residual = std::max(residual, approach);
     }
