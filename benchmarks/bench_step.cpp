@@ -1,5 +1,5 @@
-// Time per step of the reference engines on the shared scenes: stack_5 (five unit cubes) and
-// pile_100 (a hundred boxes falling into a pile). One benchmark iteration builds the engine
+// Time per step of our engine and the reference engines on the shared scenes: stack_5 and
+// stack_10 (unit cubes) and pile_100 (a hundred boxes falling into a pile). One benchmark iteration builds the engine
 // (not timed) and steps it through the scene's whole duration (5 s at dt 1/240, 1200 steps), so
 // every iteration times the same motion: the falling phase and the resting phase alike.
 #include <benchmark/benchmark.h>
@@ -42,6 +42,17 @@ BENCHMARK_CAPTURE(step_scene, stack_5/ode_worldstep, "stack_5", "ode", ode_world
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_5/bullet, "stack_5", "bullet", ReferenceSettings{})
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, stack_5/own, "stack_5", "own", ReferenceSettings{})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, stack_10/own, "stack_10", "own", ReferenceSettings{})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, stack_10/ode_quickstep, "stack_10", "ode", ReferenceSettings{})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, stack_10/bullet, "stack_10", "bullet", ReferenceSettings{})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, pile_100/own, "pile_100", "own", ReferenceSettings{})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
 BENCHMARK_CAPTURE(step_scene, pile_100/ode_quickstep, "pile_100", "ode", ReferenceSettings{})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
