@@ -53,6 +53,12 @@ struct SolverSettings {
   // corners rise by rounding (1e-17 m) does not lose them and tip; the solver lets such a point
   // approach by at most its gap in the step (a speculative contact). Suits boxes of 0.1-1 m.
   double contact_margin = 1e-3;
+  // Penetration recovery (split impulses, docs/solver.md): the fraction of a penetration deeper
+  // than `penetration_slop` pushed out per step through pseudo-velocities that never enter the
+  // momenta. 0 turns the stage off (the plain GBF method has none).
+  double penetration_recovery = 0.2;  // per step, in [0, 1]
+  double penetration_slop = 1e-4;     // m: overlaps this shallow are left alone
+  int recovery_passes = 5;
 };
 
 struct TimeSettings {

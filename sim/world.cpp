@@ -70,6 +70,13 @@ void World::step() {
   }
   enforce_wires();
 
+  // Penetration recovery: pseudo-velocities that push overlaps apart (positions only).
+  if (s.penetration_recovery > 0.0) {
+    recovery_.run(sb, solver_contacts_, s.penetration_recovery, s.penetration_slop, scene_.time.dt,
+                  s.recovery_passes);
+    ++counters_.recovery_runs;
+  }
+
   // 6. Positions and orientations; wired anchors back onto their wires.
   integrate_positions();
   project_wires();
@@ -156,8 +163,12 @@ void World::integrate_positions() {
     if (b.fixed) continue;
     // Explicit Euler moves with the velocities the step started with; semi-implicit Euler with
     // the ones the step just resolved.
-    const Vec3 v = explicit_euler ? start_v_[i] : b.v;
-    const Vec3 w = explicit_euler ? start_omega_[i] : b.omega;
+    Vec3 v = explicit_euler ? start_v_[i] : b.v;
+    Vec3 w = explicit_euler ? start_omega_[i] : b.omega;
+    if (scene_.solver.penetration_recovery > 0.0) {  // pushed apart, positions only
+      v += recovery_.pseudo_v()[i];
+      w += recovery_.pseudo_omega()[i];
+    }
     b.x += dt * v;
     // dq/dt = 1/2 (0, omega) q (Baraff's notes, "quaternion derivative"), then renormalised.
     const Quat spin(0.0, w.x(), w.y(), w.z());

@@ -11,6 +11,7 @@
 #include "sim/engine.hpp"
 #include "sim/scene.hpp"
 #include "sim/solver/loops.hpp"
+#include "sim/solver/recovery.hpp"
 #include "sim/solver/wire.hpp"
 
 namespace boxpile {
@@ -23,6 +24,7 @@ struct WorldCounters {
   std::uint64_t collision_loop_runs = 0;
   std::uint64_t contact_loop_runs = 0;
   std::uint64_t shock_propagation_runs = 0;
+  std::uint64_t recovery_runs = 0;
   std::uint64_t gravity_applications = 0;  // per body and step
   std::uint64_t damping_applications = 0;  // per body and step
   std::uint64_t gyroscopic_updates = 0;    // per body and step
@@ -67,6 +69,7 @@ class World final : public Engine {
   std::vector<BodyContact> contacts_;
   std::vector<SolverContact> solver_contacts_;
   ShockPropagation shock_;
+  PenetrationRecovery recovery_;
   std::vector<WireJoint> wires_;
   std::vector<Vec3> start_v_, start_omega_;
   std::vector<double> margins_;          // per body, this step's speculative margin, m

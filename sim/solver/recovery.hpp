@@ -1,0 +1,30 @@
+// Penetration recovery by split impulses: overlaps left by impacts are pushed apart through
+// pseudo-velocities that move positions but never enter the momenta, so recovery adds no kinetic
+// energy (the "split impulse" of Catto's and Coumans' solvers, in place of a Baumgarte bias).
+// Not part of the Guendelman-Bridson-Fedkiw method, which has no position correction; it is a
+// solver setting (`penetration_recovery`, 0 turns it off).
+#pragma once
+
+#include <vector>
+
+#include "sim/solver/loops.hpp"
+
+namespace boxpile {
+
+class PenetrationRecovery {
+ public:
+  // Solves, in `passes` sequential passes over the contacts deeper than `slop`, for normal
+  // pseudo-impulses lambda >= 0 that give each point the separating pseudo-velocity
+  // beta (depth - slop) / dt. Fills pseudo_v and pseudo_omega (per body).
+  void run(const SolverBodies& sb, const std::vector<SolverContact>& contacts, double beta,
+           double slop, double dt, int passes);
+
+  const std::vector<Vec3>& pseudo_v() const { return pseudo_v_; }
+  const std::vector<Vec3>& pseudo_omega() const { return pseudo_omega_; }
+
+ private:
+  std::vector<Vec3> pseudo_v_, pseudo_omega_;
+  std::vector<double> lambda_;
+};
+
+}  // namespace boxpile
