@@ -400,9 +400,9 @@ TEST_CASE("values out of range", "[scene]") {
       {"negative duration", [](json& s) { s["time"]["duration"] = -1; }, "time.duration",
        "must be >= 0"},
       {"zero collision passes", [](json& s) { s["solver"] = {{"collision_passes", 0}}; },
-       "solver.collision_passes", "must be >= 1, got 0"},
+       "solver.collision_passes", "must be in [1, 64], got 0"},
       {"negative contact passes", [](json& s) { s["solver"] = {{"contact_passes", -3}}; },
-       "solver.contact_passes", "must be >= 1"},
+       "solver.contact_passes", "must be in [1, 64], got -3"},
       {"negative margin", [](json& s) { s["collision"] = {{"margin", -0.1}}; },
        "collision.margin", "must be >= 0"},
       {"negative damping", [](json& s) { s["damping"] = {{"angular", -2}}; }, "damping.angular",
@@ -497,6 +497,93 @@ TEST_CASE("bodies that overlap at the start are an error", "[scene]") {
   json scene = base_scene();
   body(scene, 1)["position"] = {0, 0, 1.25};
   check_scene_error(scene.dump(), "bodies[1]", "\"allow_initial_overlap\": true");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Wires (the bone)
+
+namespace {
+
+// b1 (the compound at z = 1.5) hangs from a wire along x at z = 2 by the point 0.5 m above its
+// body origin.
+json wired_scene() {
+  json s = base_scene();
+  body(s, 1)["wire"] = {{"from", {-2, 0, 2}}, {"to", {3, 0, 2}}, {"anchor", {0, 0, 0.5}}};
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("a body may hang from a wire", "[scene][wire]") {
+  const Scene s = parse_scene(wired_scene().dump(), kSource);
+  REQUIRE(s.bodies.size() == 2);
+  CHECK_FALSE(s.bodies[0].wire);
+  REQUIRE(s.bodies[1].wire);
+  CHECK(s.bodies[1].wire->from == Vec3(-2, 0, 2));
+  CHECK(s.bodies[1].wire->to == Vec3(3, 0, 2));
+  CHECK(s.bodies[1].wire->anchor == Vec3(0, 0, 0.5));
+  CHECK_FALSE(s.bodies[1].fixed);
+
+  SECTION("the anchor may start at an end of the wire") {
+    json scene = wired_scene();
+    body(scene, 1)["wire"]["from"] = {0, 0, 2};
+    CHECK_NOTHROW(parse_scene(scene.dump(), kSource));
+  }
+  SECTION("the anchor is placed by the body's orientation") {
+    // Turned 90 degrees about x, the anchor (0, 0, 0.5) of the body frame is (0, -0.5, 1.5) in
+    // the world; the cubes of the compound look the same turned.
+    json scene = wired_scene();
+    body(scene, 1)["orientation"] = {std::sqrt(0.5), std::sqrt(0.5), 0, 0};
+    body(scene, 1)["wire"]["from"] = {0, -0.5, 1.5};
+    body(scene, 1)["wire"]["to"] = {3, -0.5, 4.5};
+    const Scene turned = parse_scene(scene.dump(), kSource);
+    REQUIRE(turned.bodies[1].wire);
+    body(scene, 1)["wire"]["anchor"] = {0, 0.5, 0};  // now (0, 0, 2): off this wire
+    check_scene_error(scene.dump(), "bodies[1].wire.anchor", "off the wire");
+  }
+  SECTION("a wire written in decimal holds an anchor that is on it up to rounding") {
+    // (0.1 + 0.2) and 0.3 differ by 5.6e-17: far inside the 1e-9 m tolerance.
+    json scene = wired_scene();
+    body(scene, 1)["position"] = {0, 0, 1.5};
+    body(scene, 1)["wire"] = {{"from", {-0.1, 0, 0.1 + 0.2 + 1.7}}, {"to", {0.7, 0, 2}},
+                              {"anchor", {0, 0, 0.5}}};
+    CHECK_NOTHROW(parse_scene(scene.dump(), kSource));
+  }
+}
+
+TEST_CASE("bad wires name the path and say what is wrong", "[scene][wire]") {
+  auto wire = [](json& s) -> json& { return body(s, 1)["wire"]; };
+  const std::vector<BadCase> cases = {
+      {"zero length", [&](json& s) { wire(s)["to"] = {-2, 0, 2}; }, "bodies[1].wire",
+       "zero-length wire"},
+      {"anchor beside the wire", [&](json& s) { wire(s)["anchor"] = {0, 0.25, 0.5}; },
+       "bodies[1].wire.anchor", "the anchor starts 0.25 m off the wire (at [0, 0.25, 2]"},
+      {"anchor beyond an end", [&](json& s) { wire(s)["to"] = {-1, 0, 2}; },
+       "bodies[1].wire.anchor", "the anchor starts 1 m off the wire"},
+      {"anchor a nanometre and a half off",
+       [&](json& s) { wire(s)["anchor"] = {0, 0, 0.5 + 1.5e-9}; }, "bodies[1].wire.anchor",
+       "within 1e-09 m"},
+      {"fixed body", [](json& s) {
+         body(s, 0)["fixed"] = true;
+         body(s, 0)["wire"] = {{"from", {0, 0, 0}}, {"to", {0, 0, 1}}, {"anchor", {0, 0, 0}}};
+       }, "bodies[0].wire", "a fixed body cannot slide on a wire"},
+      {"missing anchor", [&](json& s) { wire(s).erase("anchor"); }, "bodies[1].wire",
+       "missing required key \"anchor\""},
+      {"misspelt key", [&](json& s) {
+         wire(s)["ancor"] = wire(s)["anchor"];
+         wire(s).erase("anchor");
+       }, "bodies[1].wire", "did you mean \"anchor\"?"},
+      {"not finite", [&](json& s) { wire(s)["from"] = {0, "x", 0}; }, "bodies[1].wire.from[1]",
+       "expected number"},
+      {"not an object", [&](json& s) { wire(s) = {1, 2, 3}; }, "bodies[1].wire", "expected object"},
+  };
+  for (const BadCase& c : cases) {
+    DYNAMIC_SECTION(c.label) {
+      json scene = wired_scene();
+      c.edit(scene);
+      check_scene_error(scene.dump(2), c.path, c.word);
+    }
+  }
 }
 
 TEST_CASE("the bad fixture files give their errors", "[scene]") {
@@ -635,4 +722,22 @@ TEST_CASE("numbers in messages read back as the same double", "[scene]") {
   CHECK(json_input::format_number(-1.0) == "-1");
   CHECK(json_input::format_number(0.5) == "0.5");
   CHECK(json_input::format_number(0.1 + 0.2) == "0.30000000000000004");
+}
+
+TEST_CASE("solver settings of our engine load and are checked", "[scene]") {
+  const std::string base = R"({"name": "s", "bodies": [{"name": "b", "mass": 1, "half_extents": [0.5, 0.5, 0.5],
+    "position": [0, 0, 0.5]}], "time": {"dt": 0.01, "duration": 1}, "solver": )";
+  const Scene s = parse_scene(base + R"({"shock_passes": 7, "contact_margin": 0.002, "penetration_recovery": 0.5,
+    "penetration_slop": 0.001, "recovery_passes": 3}})", "solver.json");
+  CHECK(s.solver.shock_passes == 7);
+  CHECK(s.solver.contact_margin == 0.002);
+  CHECK(s.solver.penetration_recovery == 0.5);
+  CHECK(s.solver.penetration_slop == 0.001);
+  CHECK(s.solver.recovery_passes == 3);
+  CHECK_THROWS_WITH(parse_scene(base + R"({"penetration_recovery": 1.5}})", "solver.json"),
+                    Catch::Contains("solver.json") && Catch::Contains("solver.penetration_recovery"));
+  CHECK_THROWS_WITH(parse_scene(base + R"({"shock_passes": 65}})", "solver.json"),
+                    Catch::Contains("solver.shock_passes") && Catch::Contains("[1, 64]"));
+  CHECK_THROWS_WITH(parse_scene(base + R"({"contact_margin": -1}})", "solver.json"),
+                    Catch::Contains("solver.contact_margin"));
 }

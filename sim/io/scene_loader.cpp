@@ -1,5 +1,7 @@
 #include "sim/io/scene_loader.hpp"
 
+#include "sim/solver/loops.hpp"
+
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -59,7 +61,7 @@ std::string read_nonempty_string(const JsonNode& node) {
   return s;
 }
 
-double read_restitution(const JsonNode& node) {
+double read_unit_interval(const JsonNode& node) {
   const double e = node.number();
   if (e < 0.0 || e > 1.0) node.fail("must be in [0, 1], got " + json_input::format_number(e));
   return e;
@@ -67,7 +69,9 @@ double read_restitution(const JsonNode& node) {
 
 int read_pass_count(const JsonNode& node) {
   const int n = node.integer();
-  if (n < 1) node.fail("must be >= 1, got " + std::to_string(n));
+  if (n < 1 || n > kMaxSolverPasses) {
+    node.fail("must be in [1, " + std::to_string(kMaxSolverPasses) + "], got " + std::to_string(n));
+  }
   return n;
 }
 
@@ -76,7 +80,7 @@ Material read_material(const JsonNode& node, const Material& fallback) {
   node.expect_object({"friction", "restitution"});
   Material m = fallback;
   if (const auto mu = node.find("friction")) m.friction = json_input::read_non_negative(*mu);
-  if (const auto e = node.find("restitution")) m.restitution = read_restitution(*e);
+  if (const auto e = node.find("restitution")) m.restitution = read_unit_interval(*e);
   return m;
 }
 
@@ -103,8 +107,9 @@ Damping read_damping(const JsonNode& node) {
 }
 
 SolverSettings read_solver(const JsonNode& node) {
-  node.expect_object(
-      {"method", "collision_passes", "contact_passes", "shock_propagation", "integrator"});
+  node.expect_object({"method", "collision_passes", "contact_passes", "shock_propagation",
+                      "shock_passes", "integrator", "contact_margin", "penetration_recovery",
+                      "penetration_slop", "recovery_passes"});
   SolverSettings s;
   if (const auto m = node.find("method")) {
     s.method = kSolverMethodValues[m->choice(kSolverMethods, "solver method")];
@@ -112,6 +117,11 @@ SolverSettings read_solver(const JsonNode& node) {
   if (const auto n = node.find("collision_passes")) s.collision_passes = read_pass_count(*n);
   if (const auto n = node.find("contact_passes")) s.contact_passes = read_pass_count(*n);
   s.shock_propagation = node.boolean_or("shock_propagation", s.shock_propagation);
+  if (const auto n = node.find("shock_passes")) s.shock_passes = read_pass_count(*n);
+  if (const auto m = node.find("contact_margin")) s.contact_margin = json_input::read_non_negative(*m);
+  if (const auto r = node.find("penetration_recovery")) s.penetration_recovery = read_unit_interval(*r);
+  if (const auto m = node.find("penetration_slop")) s.penetration_slop = json_input::read_non_negative(*m);
+  if (const auto n = node.find("recovery_passes")) s.recovery_passes = read_pass_count(*n);
   if (const auto i = node.find("integrator")) {
     s.integrator = kIntegratorValues[i->choice(kIntegrators, "integrator")];
   }
