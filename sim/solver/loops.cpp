@@ -11,17 +11,6 @@ namespace {
 constexpr double kShockConverged = 1e-9;
 }  // namespace
 
-void SolverBodies::apply(const SolverContact& c, const Vec3& j, bool a_moves, bool b_moves) {
-  auto push = [](RigidBody& body, const Vec3& impulse, const Vec3& r) {
-    body.P += impulse;
-    body.L += r.cross(impulse);
-    body.v = body.inv_mass * body.P;
-    body.omega = body.inv_inertia_world * body.L;
-  };
-  if (a_moves && !get(c.a).fixed) push(at(c.a), j, c.ra);
-  if (b_moves && c.b >= 0 && !get(c.b).fixed) push(at(c.b), -j, c.rb);
-}
-
 double approach_residual(const SolverBodies& sb, const std::vector<SolverContact>& contacts, double dt) {
   double worst = 0.0;
   for (const SolverContact& c : contacts)

@@ -47,7 +47,18 @@ struct SolverBodies {
     return get(c.a).v + get(c.a).omega.cross(c.ra) - get(c.b).v - get(c.b).omega.cross(c.rb);
   }
   // Applies j to A and -j to B at the contact offsets; frozen or fixed bodies do not move.
-  void apply(const SolverContact& c, const Vec3& j, bool a_moves, bool b_moves);
+  void apply(const SolverContact& c, const Vec3& j, bool a_moves, bool b_moves) {
+    if (a_moves && !get(c.a).fixed) push(at(c.a), j, c.ra);
+    if (b_moves && c.b >= 0 && !get(c.b).fixed) push(at(c.b), -j, c.rb);
+  }
+
+ private:
+  static void push(RigidBody& body, const Vec3& impulse, const Vec3& r) {
+    body.P += impulse;
+    body.L += r.cross(impulse);
+    body.v = body.inv_mass * body.P;
+    body.omega = body.inv_inertia_world * body.L;
+  }
 };
 
 // A collision event: an impulse at an approach faster than resting contact explains.
