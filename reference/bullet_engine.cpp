@@ -5,6 +5,7 @@
 #include <utility>
 
 #include <btBulletDynamicsCommon.h>
+#include <BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h>
 #include <Eigen/Eigenvalues>
 
 #include "reference/bullet_support.hpp"
@@ -72,6 +73,7 @@ struct BulletEngine::World {
 
   void add_body(int index);
   void add_ground(const HalfSpace& ground);
+  void add_wire(int index);
   void read_contacts();
   // Box `shape` of body `body` at the Bullet transform `t` of that body.
   OrientedBox box_at(int body, int shape, const btTransform& t) const;
@@ -90,6 +92,7 @@ struct BulletEngine::World {
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btRigidBody>> rigid;  // scene order
   std::unique_ptr<btRigidBody> ground;
+  std::vector<std::unique_ptr<btTypedConstraint>> wires;
   std::vector<MaterialTag> tags;  // sized once: objects point into it
   std::vector<btTransform> before_step;  // body transforms the last step's contacts were found at
   std::vector<BodyContact> contacts;
@@ -121,6 +124,9 @@ BulletEngine::World::World(const Scene& s, const ReferenceSettings& st)
   tags.reserve(bodies.size() + 1);
   for (int i = 0; i < static_cast<int>(bodies.size()); ++i) add_body(i);
   if (scene.ground) add_ground(*scene.ground);
+  for (int i = 0; i < static_cast<int>(bodies.size()); ++i) {
+    if (scene.bodies[static_cast<std::size_t>(i)].wire) add_wire(i);
+  }
   before_step.resize(bodies.size());
   std::size_t box_count = 0;
   for (const RigidBody& b : bodies) box_count += b.shapes.size();
@@ -128,6 +134,7 @@ BulletEngine::World::World(const Scene& s, const ReferenceSettings& st)
 }
 
 BulletEngine::World::~World() {
+  for (auto& wire : wires) world.removeConstraint(wire.get());
   if (ground) world.removeRigidBody(ground.get());
   for (auto& body : rigid) world.removeRigidBody(body.get());
 }
@@ -196,6 +203,38 @@ void BulletEngine::World::add_ground(const HalfSpace& half_space) {
   ground->setUserPointer(&tags.back());
   ground->setUserIndex(kGround);
   world.addRigidBody(ground.get());
+}
+
+// The wire: one generic 6-dof constraint between the world and the body, with no carriage.
+// Its frame A is fixed in the world at the wire's start, x along the wire; its frame B is the
+// anchor in the body. The offset of B from A, measured along A's axes, is held at 0 across the
+// wire (y and z locked) and between 0 and the wire's length along it (x limited); the three
+// rotations are free (lower limit above upper). Errors are corrected as for contacts (Bullet's
+// ERP 0.2, CFM 0).
+void BulletEngine::World::add_wire(int index) {
+  const BodyDesc& desc = scene.bodies[static_cast<std::size_t>(index)];
+  const Wire& wire = *desc.wire;
+  const RigidBody& rb = bodies[static_cast<std::size_t>(index)];
+  const Vec3 along = wire.to - wire.from;
+  const double length = along.norm();
+  // Any right-handed frame with x along the wire.
+  const Quat wire_frame = Quat::FromTwoVectors(Vec3::UnitX(), along / length);
+  // The anchor in Bullet's body frame (centre of mass, principal axes), and the same world
+  // orientation as frame A, so that the rotation between the frames starts at zero.
+  const Quat body_to_world = rb.q * principal[static_cast<std::size_t>(index)];
+  const Vec3 anchor = principal[static_cast<std::size_t>(index)].conjugate() * (rb.frame_offset + wire.anchor);
+  const Pose frame_a{wire.from, wire_frame};
+  const Pose frame_b{anchor, (body_to_world.conjugate() * wire_frame).normalized()};
+
+  auto joint = std::make_unique<btGeneric6DofSpring2Constraint>(
+      btTypedConstraint::getFixedBody(), *rigid[static_cast<std::size_t>(index)], to_bt(frame_a),
+      to_bt(frame_b));
+  joint->setLinearLowerLimit(btVector3(0, 0, 0));
+  joint->setLinearUpperLimit(btVector3(length, 0, 0));
+  joint->setAngularLowerLimit(btVector3(1, 1, 1));
+  joint->setAngularUpperLimit(btVector3(-1, -1, -1));
+  world.addConstraint(joint.get());
+  wires.push_back(std::move(joint));
 }
 
 OrientedBox BulletEngine::World::box_at(int body, int shape, const btTransform& t) const {

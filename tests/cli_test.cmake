@@ -24,7 +24,21 @@ endfunction()
 
 run(version 0 "boxpile 0." --version)
 run(help 0 "contacts" --help)
-run(no_command 2 "")
+# No command: the main job, compare on the bone scene into ./boxpile-report/.
+execute_process(COMMAND "${BOXPILE}" WORKING_DIRECTORY "${WORK}"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(SEND_ERROR "no_command: exit ${rc}, expected 0\n${out}${err}")
+endif()
+string(FIND "${out}" "boxpile-report/report.md" at)
+if(at EQUAL -1)
+  message(SEND_ERROR "no_command: the report's place is not printed\n${out}")
+endif()
+foreach(f report.json report.md energy.svg position_difference.svg)
+  if(NOT EXISTS "${WORK}/boxpile-report/${f}")
+    message(SEND_ERROR "no_command: boxpile-report/${f} missing")
+  endif()
+endforeach()
 run(unknown_flag 2 "--frobnicate" contacts --frobnicate x.json)
 
 # The octagon: a unit box yawed 45 degrees resting 1 cm deep on another.

@@ -62,17 +62,23 @@ std::string available_list() {
 std::span<const std::string_view> engine_names() { return kAllNames; }
 std::span<const std::string_view> available_engine_names() { return kAvailableNames; }
 
-std::unique_ptr<Engine> make_engine(std::string_view name, const Scene& scene,
-                                    const ReferenceSettings& settings) {
+void check_engine_name(std::string_view name) {
   for (const EngineEntry& e : kEngines) {
     if (e.name != name) continue;
-    if (!e.make) {
-      throw UnknownEngine("engine \"" + std::string(name) + "\": " + std::string(e.unavailable) +
-                          "; available: " + available_list());
-    }
-    return e.make(scene, settings);
+    if (e.make) return;
+    throw UnknownEngine("engine \"" + std::string(name) + "\": " + std::string(e.unavailable) +
+                        "; available: " + available_list());
   }
   throw UnknownEngine("unknown engine \"" + std::string(name) + "\"; available: " + available_list());
+}
+
+std::unique_ptr<Engine> make_engine(std::string_view name, const Scene& scene,
+                                    const ReferenceSettings& settings) {
+  check_engine_name(name);
+  for (const EngineEntry& e : kEngines) {
+    if (e.name == name) return e.make(scene, settings);
+  }
+  return nullptr;  // not reached: check_engine_name() has thrown
 }
 
 }  // namespace boxpile

@@ -25,6 +25,9 @@ std::span<const std::string_view> engine_names();
 // The names make_engine() can build.
 std::span<const std::string_view> available_engine_names();
 
+// Throws UnknownEngine unless make_engine() can build `name` (to check a list before any run).
+void check_engine_name(std::string_view name);
+
 // The engine `name` built from `scene` (the reference engines take `settings`); UnknownEngine
 // for a name that is not available.
 std::unique_ptr<Engine> make_engine(std::string_view name, const Scene& scene,

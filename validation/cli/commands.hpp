@@ -9,10 +9,12 @@
 
 namespace boxpile::cli {
 
-// Exit codes: 0 success, 2 bad input (a scene, a query, a flag), 1 anything else.
+// Exit codes: 0 success, 2 bad input (a scene, a query, a flag), 130 interrupted (the shell's
+// 128 + SIGINT), 1 anything else.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitInterrupted = 130;
 
 // `boxpile contacts QUERY.json [--reduce] [--engines LIST]`: the contact sets of one query from
 // our detector and the reference engines, with a diff of each reference against ours, on stdout.
@@ -39,5 +41,20 @@ struct RunOptions {
 };
 void add_run_command(CLI::App& app, RunOptions& options);
 int run_run(const RunOptions& options);
+
+// `boxpile compare SCENE.json [--engines LIST] [--dt DT] [--duration T] [--report DIR]`: runs the
+// scene in each engine and writes a report directory (report.json, report.md, SVG plots); prints
+// a summary table. `boxpile` with no command runs it on the default scene.
+struct CompareOptions {
+  std::string scene;
+  std::vector<std::string> engines;  // empty: own, ode, bullet
+  std::optional<double> dt;          // s; the scene's when absent
+  std::optional<double> duration;    // s; the scene's when absent
+  std::string report = "boxpile-report";
+};
+void add_compare_command(CLI::App& app, CompareOptions& options);
+int run_compare_command(const CompareOptions& options);
+// The scene and report directory of `boxpile` with no command.
+CompareOptions default_compare_options();
 
 }  // namespace boxpile::cli

@@ -4,17 +4,23 @@
 #include "sim/io/input_error.hpp"
 #include "validation/cli/commands.hpp"
 #include "validation/engine_factory.hpp"
+#include "validation/report_directory.hpp"
 
 int main(int argc, char** argv) {
   using namespace boxpile::cli;
   CLI::App app{"boxpile: a pile of boxes in our own simulator, checked against ODE and Bullet"};
   app.set_version_flag("--version", std::string("boxpile ") + BOXPILE_VERSION);
-  app.require_subcommand(1);
+  // No command runs the main job: compare on the default scene (the bone and the pile).
+  app.require_subcommand(0, 1);
+  app.footer("Without a command, boxpile runs `compare` on fixtures/scenes/bone_hits_pile.json into "
+             "./boxpile-report/.");
 
   ContactsOptions contacts;
   add_contacts_command(app, contacts);
   RunOptions run;
   add_run_command(app, run);
+  CompareOptions compare;
+  add_compare_command(app, compare);
 
   try {
     app.parse(argc, argv);
@@ -30,10 +36,17 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("contacts")) return run_contacts(contacts);
     if (app.got_subcommand("run")) return run_run(run);
+    if (app.got_subcommand("compare")) return run_compare_command(compare);
+    std::cerr << "boxpile: no command given: comparing the engines on the default scene "
+                 "(`boxpile --help` lists the commands)\n";
+    return run_compare_command(default_compare_options());
   } catch (const boxpile::InputError& e) {
     std::cerr << "boxpile: error: " << e.what() << '\n';
     return kExitBadInput;
   } catch (const boxpile::UnknownEngine& e) {
+    std::cerr << "boxpile: error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const boxpile::ReportDirectoryError& e) {
     std::cerr << "boxpile: error: " << e.what() << '\n';
     return kExitBadInput;
   } catch (const std::exception& e) {

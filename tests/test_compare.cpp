@@ -1,0 +1,295 @@
+// `boxpile compare` and its pieces: the report on a stack of five has every field, its settled
+// heights agree with `boxpile run`, the plots are SVG, stacks are found through the contact graph,
+// and a report directory is complete or absent.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/io/scene_loader.hpp"
+#include "validation/compare.hpp"
+#include "validation/report.hpp"
+#include "validation/report_directory.hpp"
+#include "validation/stacks.hpp"
+#include "validation/wire_check.hpp"
+
+using namespace boxpile;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+Scene fixture(const std::string& name) {
+  return load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + name + ".json");
+}
+
+// A fresh directory under the build tree for one test.
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::path(BOXPILE_TEST_WORK) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path);
+  std::ostringstream all;
+  all << in.rdbuf();
+  return all.str();
+}
+
+// Runs the boxpile executable; returns its exit code.
+int run_boxpile(const std::string& args) {
+  const std::string command = std::string(BOXPILE_EXE) + " " + args + " > /dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Every key the issue fixes for other tools, present with the right type.
+void check_report_keys(const json& r, const std::vector<std::string>& engines) {
+  CHECK(r.at("scene").is_string());
+  CHECK(r.at("dt").is_number());
+  CHECK(r.at("duration").is_number());
+  REQUIRE(r.at("engines").size() == engines.size());
+  for (const std::string& name : engines) {
+    INFO("engine " << name);
+    const json& e = r.at("engines").at(name);
+    CHECK(e.at("final").at("t").is_number());
+    REQUIRE(!e.at("final").at("bodies").empty());
+    for (const json& b : e.at("final").at("bodies")) {
+      CHECK(b.at("name").is_string());
+      CHECK(b.at("position").size() == 3);
+      CHECK(b.at("orientation").size() == 4);
+      CHECK(b.at("velocity").size() == 3);
+      CHECK(b.at("angular_velocity").size() == 3);
+    }
+    for (const json& s : e.at("stacks")) {
+      CHECK(s.at("bodies").is_array());
+      CHECK(s.at("height").is_number());
+      CHECK(s.contains("ideal"));
+      CHECK(s.contains("error"));
+    }
+    CHECK(e.at("us_per_step").is_number());
+    CHECK(e.at("max_penetration").is_number());
+    CHECK(e.at("energy").at("initial").is_number());
+    CHECK(e.at("energy").at("final").is_number());
+    CHECK(e.at("energy").at("max").is_number());
+    CHECK(e.at("events").is_array());
+  }
+  CHECK(r.at("pairs").is_array());
+  CHECK(r.at("contacts").is_array());
+}
+
+// A plot is its data, its script and a well-formed SVG document.
+void check_plot(const fs::path& dir, const std::string& name) {
+  INFO("plot " << name);
+  CHECK(fs::file_size(dir / (name + ".dat")) > 0);
+  CHECK(read(dir / (name + ".gp")).find(name + ".svg") != std::string::npos);
+  const std::string svg = read(dir / (name + ".svg"));
+  const bool starts = svg.rfind("<?xml", 0) == 0 || svg.rfind("<svg", 0) == 0;
+  CHECK(starts);
+  CHECK(svg.find("<svg") != std::string::npos);
+  const auto end = svg.rfind("</svg>");
+  REQUIRE(end != std::string::npos);
+  CHECK(svg.find_first_not_of(" \t\r\n", end + 6) == std::string::npos);  // nothing after it
+}
+
+}  // namespace
+
+TEST_CASE("compare on a stack of five gives every field of the report", "[compare]") {
+  Scene scene = fixture("stack_5");
+  scene.time.duration = 0.5;
+  const CompareResult r = run_compare(scene, CompareSettings{});
+  REQUIRE(r.runs.size() == 3);
+  REQUIRE(r.baselines.size() == 3);
+  REQUIRE(r.pairs.size() == 3);  // own-ode, own-bullet, ode-bullet
+  CHECK_FALSE(r.contacts.empty());
+  REQUIRE(r.start_stacks.size() == 1);
+  CHECK(r.start_stacks[0].bodies.size() == 5);
+  CHECK(r.start_stacks[0].height == Approx(5.0).margin(1e-12));
+
+  for (const EngineRun& run : r.runs) {
+    INFO("engine " << run.engine);
+    CHECK(run.steps == 120);
+    CHECK(run.frames.t.size() == 31);  // every 4 steps at 60 frames per second, and the start
+    CHECK(run.energy_initial == Approx(122.625).margin(1e-9));  // 9.81 * (0.5 + ... + 4.5)
+    CHECK(run.finite);
+    // A resting stack stays one stack of five, settled within a millimetre of 5 m.
+    REQUIRE(run.stacks.size() == 1);
+    CHECK(run.stacks[0].bodies.size() == 5);
+    REQUIRE(run.stacks[0].ideal);
+    CHECK(*run.stacks[0].ideal == Approx(5.0).margin(1e-12));
+    REQUIRE(run.stacks[0].error);
+    CHECK(std::abs(*run.stacks[0].error) < 1e-3);
+    CHECK(run.deepest.depth < 1e-3);
+  }
+  for (const PairComparison& p : r.pairs) {
+    INFO(p.difference.a << " vs " << p.difference.b);
+    CHECK(p.verdict == "agree");  // nothing moves more than 1 cm
+    CHECK(p.difference.t.size() == 31);
+    CHECK(p.difference.bodies.size() == 5);
+  }
+  check_report_keys(report_json(r), {"own", "ode", "bullet"});
+}
+
+TEST_CASE("compare's settled stack heights match those of boxpile run, and its plots are SVG", "[compare][cli]") {
+  const fs::path dir = scratch("compare_vs_run");
+  const std::string scene = std::string(BOXPILE_FIXTURES_DIR) + "/scenes/stack_5.json";
+  REQUIRE(run_boxpile("compare " + scene + " --duration 1 --report " + (dir / "report").string()) == 0);
+  const json report = json::parse(read(dir / "report" / "report.json"));
+  check_report_keys(report, {"own", "ode", "bullet"});
+  for (const std::string name : {"energy", "penetration", "stack_height", "position_difference"}) {
+    check_plot(dir / "report", name);
+  }
+  CHECK(read(dir / "report" / "report.md").find("![energy](energy.svg)") != std::string::npos);
+
+  for (const std::string engine : {"own", "ode", "bullet"}) {
+    INFO("engine " << engine);
+    const fs::path out = dir / (engine + ".json");
+    REQUIRE(run_boxpile("run " + scene + " --engine " + engine + " --duration 1 --out " + out.string()) == 0);
+    const json run = json::parse(read(out));
+    // The top of the stack from `run`'s final state: the top box's highest vertex, its centre's
+    // height plus 0.5 (|R_zx| + |R_zy| + |R_zz|).
+    const json& top = run.at("final").at("bodies").at(4);
+    const json& q = top.at("orientation");
+    const Quat orientation(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
+    const double height =
+        top.at("position")[2].get<double>() + 0.5 * orientation.toRotationMatrix().row(2).cwiseAbs().sum();
+    const json& stacks = report.at("engines").at(engine).at("stacks");
+    REQUIRE(stacks.size() == 1);
+    CHECK(stacks[0].at("height").get<double>() == Approx(height).margin(1e-12));
+    CHECK(stacks[0].at("error").get<double>() == Approx(height - 5.0).margin(1e-12));
+  }
+}
+
+TEST_CASE("every engine reports the impact of a dropped box, at the speed of the fall", "[compare]") {
+  // The bounce fixture: a unit box dropped flat from 1 m lands at t = sqrt(2 h / g) = 0.4515 s at
+  // v = sqrt(2 g h) = 4.43 m/s. Ours reports it from its solver, ODE's and Bullet's are found from
+  // their contact sets; a few steps of integration error either way (dt = 1/240 s).
+  Scene scene = fixture("bounce");
+  scene.time.duration = 0.6;
+  const double g = 9.81, h = 1.0;
+  for (const char* engine : {"own", "ode", "bullet"}) {
+    DYNAMIC_SECTION(engine) {
+      const EngineRun run = run_engine(scene, engine, CompareSettings{});
+      REQUIRE_FALSE(run.events.empty());
+      const ImpactEvent& first = run.events.front();
+      CHECK(first.body_a == 0);
+      CHECK(first.body_b == kGround);
+      CHECK(first.t == Approx(std::sqrt(2 * h / g)).margin(3 * scene.time.dt));
+      CHECK(first.approach_speed == Approx(std::sqrt(2 * g * h)).epsilon(0.03));
+      CHECK(first.impulse.has_value() == (std::string(engine) == "own"));
+    }
+  }
+}
+
+TEST_CASE("stacks are found through the contact graph from the ground", "[compare][stacks]") {
+  // Two towers of two 1 m cubes 3 m apart, a cube floating above them, and a cube on a wire
+  // touching the top of the first tower.
+  Scene s = fixture("stack_5");
+  s.bodies.resize(2);
+  s.bodies[1].frame.position = Vec3(0, 0, 1.5);
+  BodyDesc b = s.bodies[0];
+  b.name = "c0";
+  b.frame.position = Vec3(3, 0, 0.5);
+  s.bodies.push_back(b);
+  b.name = "c1";
+  b.frame.position = Vec3(3, 0, 1.5);
+  s.bodies.push_back(b);
+  b.name = "floating";
+  b.frame.position = Vec3(3, 0, 4.0);
+  s.bodies.push_back(b);
+  b.name = "hanging";
+  b.frame.position = Vec3(0, 0, 2.5);
+  b.wire = Wire{Vec3(-1, 0, 3), Vec3(1, 0, 3), Vec3(0, 0, 0.5)};
+  s.bodies.push_back(b);
+
+  const std::vector<RigidBody> bodies = make_bodies(s);
+  const std::vector<Stack> stacks = find_stacks(bodies, s);
+  REQUIRE(stacks.size() == 2);
+  CHECK(stacks[0].bodies == std::vector<int>{0, 1});
+  CHECK(stacks[0].height == Approx(2.0));
+  CHECK(stacks[1].bodies == std::vector<int>{2, 3});
+
+  // A stack that is the same set of bodies as at the start gets its start height as ideal.
+  std::vector<RigidBody> later = bodies;
+  later[1].x.z() -= 1e-4;  // settled a little
+  const std::vector<StackReport> reports = report_stacks(find_stacks(later, s), stacks, later);
+  REQUIRE(reports.size() == 2);
+  CHECK(reports[0].bodies == std::vector<std::string>{"b0", "b1"});
+  REQUIRE(reports[0].error);
+  CHECK(*reports[0].error == Approx(-1e-4).margin(1e-12));
+
+  // The top cube knocked off: the tower of two is gone, so no ideal for what is left.
+  later[1].x = Vec3(0, 5, 0.5);
+  const std::vector<StackReport> knocked = report_stacks(find_stacks(later, s), stacks, later);
+  REQUIRE(knocked.size() == 3);
+  CHECK_FALSE(knocked[0].ideal);
+}
+
+TEST_CASE("the perturbed start moves every free body by the perturbation, on its wire for the bone",
+          "[compare]") {
+  const Scene scene = fixture("bone_hits_pile");
+  const Scene moved = perturbed_scene(scene, 1e-9);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyDesc& a = scene.bodies[i];
+    const BodyDesc& b = moved.bodies[i];
+    CHECK((a.frame.position - b.frame.position).norm() == Approx(1e-9).epsilon(1e-6));
+    CHECK(std::abs(a.frame.position.z() - b.frame.position.z()) < (a.wire ? 1e-9 : 1e-15));
+    if (a.wire) CHECK(wire_gap(*a.wire, BodyState{a.name, b.frame.position, b.frame.orientation, {}, {}}).off < 1e-15);
+  }
+}
+
+TEST_CASE("a report directory is complete or absent", "[compare][report]") {
+  const fs::path dir = scratch("report_directory");
+
+  SECTION("nothing is left when the report is abandoned") {
+    {
+      ReportDirectory report(dir / "abandoned");
+      std::ofstream(report.staging() / "report.json") << "{}";
+    }
+    CHECK_FALSE(fs::exists(dir / "abandoned"));
+    CHECK(fs::is_empty(dir));
+  }
+  SECTION("a committed report replaces the previous one whole") {
+    for (const char* content : {"first", "second"}) {
+      ReportDirectory report(dir / "r");
+      std::ofstream(report.staging() / "report.json") << content;
+      report.commit();
+    }
+    CHECK(read(dir / "r" / "report.json") == "second");
+    CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);  // no leftovers
+  }
+  SECTION("a path under a file cannot be a report directory") {
+    std::ofstream(dir / "file") << "x";
+    CHECK_THROWS_AS(ReportDirectory(dir / "file" / "r"), ReportDirectoryError);
+    CHECK_THROWS_AS(ReportDirectory(dir / "file"), ReportDirectoryError);
+  }
+  SECTION("a directory that holds something else is left alone") {
+    fs::create_directories(dir / "mine");
+    std::ofstream(dir / "mine" / "notes.txt") << "keep me";
+    CHECK_THROWS_WITH(ReportDirectory(dir / "mine"), Catch::Contains("not a boxpile report"));
+    CHECK(read(dir / "mine" / "notes.txt") == "keep me");
+  }
+}
+
+TEST_CASE("bad input to boxpile compare exits with 2 and writes no report", "[compare][cli]") {
+  const fs::path dir = scratch("compare_bad_input");
+  const std::string scene = std::string(BOXPILE_FIXTURES_DIR) + "/scenes/stack_5.json";
+  const std::string report = (dir / "report").string();
+  CHECK(run_boxpile("compare " + scene + " --engines own,physx --duration 0.1 --report " + report) == 2);
+  CHECK(run_boxpile("compare " + (dir / "missing.json").string() + " --duration 0.1 --report " + report) == 2);
+  std::ofstream(dir / "file") << "x";
+  CHECK(run_boxpile("compare " + scene + " --duration 0.1 --report " + (dir / "file" / "report").string()) == 2);
+  CHECK(run_boxpile("compare " + scene + " --dt -1 --report " + report) == 2);
+  // Nothing but the file made above: no report, no staging directory.
+  CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);
+}

@@ -1,0 +1,489 @@
+#include "validation/compare.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "reference/ode_engine.hpp"
+#include "reference/reference_contacts.hpp"
+#include "sim/collision/box.hpp"
+#include "sim/collision/box_box.hpp"
+#include "sim/collision/box_plane.hpp"
+#include "sim/collision/broadphase.hpp"
+#include "sim/world.hpp"
+#include "validation/engine_factory.hpp"
+#include "validation/state_meter.hpp"
+#include "validation/wire_check.hpp"
+
+namespace boxpile {
+namespace {
+
+// An approach faster than this is an impact: the rule our World uses for its collision events
+// (sim/world.cpp), so that every engine's events mean the same: above the |g| dt that gravity adds
+// to a resting contact in one step (twice it), and above rounding.
+constexpr double kEventSpeedMin = 0.01;  // m/s
+constexpr double kEventSpeedGravitySteps = 2.0;
+
+// The golden angle turns each body's perturbation away from the last one's, so that no two
+// neighbours are pushed the same way.
+constexpr double kGoldenAngle = 2.399963229728653;  // rad
+
+// Contact disagreements at or below this are rounding (angles in rad, distances in m), not listed:
+// the hull tolerance of contact_diff.hpp, far above the 1e-15 of agreeing detectors (boxes of a
+// few metres) and far below any contact feature.
+constexpr double kNegligibleDisagreement = kHullTolerance;
+
+// A pair passes for chaos when it first differs no earlier than this fraction of the time the
+// engines take to diverge from themselves.
+constexpr double kChaosFraction = 0.5;
+
+long step_count(const Scene& scene) { return std::lround(scene.time.duration / scene.time.dt); }
+
+long steps_per_frame(const Scene& scene, double frame_rate) {
+  return std::max(1L, std::lround(1.0 / (frame_rate * scene.time.dt)));
+}
+
+double event_speed(const Scene& scene) {
+  return std::max(kEventSpeedMin, kEventSpeedGravitySteps * scene.gravity.norm() * scene.time.dt);
+}
+
+bool finite(const BodyState& s) {
+  return s.position.allFinite() && s.orientation.coeffs().allFinite() && s.velocity.allFinite() &&
+         s.angular_velocity.allFinite();
+}
+
+// Impacts in one step of a reference engine: each contact point of the step's set approaching
+// faster than `speed` with the velocities before the step, and closing its gap within the step
+// (a point still apart may approach at up to gap / dt), one event per pair and step.
+void find_impacts(const std::vector<BodyContact>& contacts, const std::vector<RigidBody>& before,
+                  double t, double dt, double speed, std::vector<ImpactEvent>& events) {
+  const std::size_t first = events.size();
+  for (const BodyContact& bc : contacts) {
+    const Contact& c = bc.contact;
+    const RigidBody& a = before[static_cast<std::size_t>(bc.body_a)];
+    Vec3 relative = a.velocity_at(c.position);
+    if (bc.body_b != kGround) relative -= before[static_cast<std::size_t>(bc.body_b)].velocity_at(c.position);
+    const double approach = -c.normal.dot(relative);
+    if (approach <= speed || (c.depth < 0.0 && approach * dt < -c.depth)) continue;
+    auto same = [&](const ImpactEvent& e) { return e.body_a == bc.body_a && e.body_b == bc.body_b; };
+    const auto it = std::find_if(events.begin() + static_cast<std::ptrdiff_t>(first), events.end(), same);
+    if (it == events.end()) {
+      events.push_back({t, bc.body_a, bc.body_b, approach, std::nullopt});
+    } else {
+      it->approach_speed = std::max(it->approach_speed, approach);
+    }
+  }
+}
+
+// Our solver records the impulse of each collision it resolved: attached to the impact found from
+// outside in the same step for the same pair. (Its own approach speed is not used: it is measured
+// during the sequential passes, after other points' impulses have turned the body, so a box
+// landing flat at 4.45 m/s reads 4.88 m/s at its last corner.)
+void attach_impulses(const World& world, double dt, std::vector<ImpactEvent>& events) {
+  for (const CollisionEvent& e : world.events()) {
+    for (ImpactEvent& ev : events) {
+      if (ev.body_a == e.body_a && ev.body_b == e.body_b && std::abs(ev.t - e.time) < 0.5 * dt) ev.impulse = e.impulse;
+    }
+  }
+}
+
+// The tallest stack of a pose, 0 when there is none.
+double tallest_stack(const std::vector<RigidBody>& bodies, const Scene& scene, double tolerance) {
+  double tallest = 0.0;
+  for (const Stack& s : find_stacks(bodies, scene, tolerance)) tallest = std::max(tallest, s.height);
+  return tallest;
+}
+
+// Watches every body on a wire through a run.
+class WireWatch {
+ public:
+  explicit WireWatch(const Scene& scene) : scene_(scene) {
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const auto& wire = scene.bodies[i].wire;
+      if (!wire) continue;
+      index_.push_back(i);
+      reports_.push_back({scene.bodies[i].name, 0.0, 0.0, 0.0, (wire->to - wire->from).norm()});
+    }
+  }
+  void measure(const std::vector<BodyState>& states) {
+    for (std::size_t k = 0; k < index_.size(); ++k) {
+      const WireGap g = wire_gap(*scene_.bodies[index_[k]].wire, states[index_[k]]);
+      reports_[k].max_off = std::max(reports_[k].max_off, g.off);
+      reports_[k].max_past_end = std::max(reports_[k].max_past_end, g.past_end);
+      reports_[k].final_along = g.along;
+    }
+  }
+  const std::vector<WireReport>& reports() const { return reports_; }
+
+ private:
+  const Scene& scene_;
+  std::vector<std::size_t> index_;
+  std::vector<WireReport> reports_;
+};
+
+enum class RunDetail { Full, StatesOnly };
+
+EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettings& settings,
+                  RunDetail detail, const std::function<void(double)>& progress) {
+  EngineRun run;
+  run.engine = std::string(name);
+  const std::unique_ptr<Engine> engine = make_engine(name, scene, settings.reference);
+  const auto* own = dynamic_cast<const World*>(engine.get());
+  const auto* ode = dynamic_cast<const OdeEngine*>(engine.get());
+  const bool full = detail == RunDetail::Full;
+  const double dt = scene.time.dt;
+  const long steps = step_count(scene);
+  const long every = steps_per_frame(scene, settings.frame_rate);
+  const double speed = event_speed(scene);
+
+  StateMeter meter(scene);
+  WireWatch wires(scene);
+  std::vector<RigidBody> posed = make_bodies(scene);
+  std::vector<BodyState> states, before;
+  std::vector<BodyContact> contacts;
+
+  auto measure_step = [&](double t) {
+    if (!full) return;
+    const FrameMetrics m = meter.measure_step(states);
+    const double e = m.energy.total();
+    if (t == 0.0) run.energy_initial = run.energy_max = e;
+    if (e > run.energy_max) {
+      run.energy_max = e;
+      run.energy_max_t = t;
+    }
+    run.energy_final = e;
+    if (m.penetration.depth > run.deepest.depth) {
+      run.deepest = m.penetration;
+      run.deepest_t = t;
+    }
+    wires.measure(states);
+  };
+  auto record = [&](double t) {
+    FrameSeries& f = run.frames;
+    f.t.push_back(t);
+    f.states.push_back(states);
+    if (!full) return;
+    const FrameMetrics m = meter.measure(states);
+    f.energy.push_back(m.energy.total());
+    f.penetration.push_back(m.penetration.depth);
+    f.levitation.push_back(m.levitation);
+    set_body_states(posed, states);
+    f.stack_height.push_back(tallest_stack(posed, scene, settings.touch_tolerance));
+    // At the start every body is at rest, wherever the scene put it: a body placed in the air
+    // is not levitating yet.
+    if (t > 0.0) run.levitation_max = std::max(run.levitation_max, m.levitation);
+    run.levitation_final = m.levitation;
+  };
+
+  engine->body_states(states);
+  measure_step(0.0);
+  record(0.0);
+  using Clock = std::chrono::steady_clock;
+  Clock::duration stepping{};
+  for (long k = 1; k <= steps; ++k) {
+    std::swap(before, states);
+    const Clock::time_point start = Clock::now();
+    engine->step();
+    stepping += Clock::now() - start;
+    const double t = static_cast<double>(k) * dt;
+    engine->body_states(states);
+    if (full) {
+      engine->contacts(contacts);
+      set_body_states(posed, before);
+      find_impacts(contacts, posed, t - dt, dt, speed, run.events);
+    }
+    measure_step(t);
+    if (k % every == 0 || k == steps) {
+      record(t);
+      if (progress) progress(static_cast<double>(k) / static_cast<double>(steps));
+    }
+  }
+
+  run.steps = steps;
+  run.wall_seconds = std::chrono::duration<double>(stepping).count();
+  run.us_per_step = steps > 0 ? 1e6 * run.wall_seconds / static_cast<double>(steps) : 0.0;
+  run.final_states = states;
+  run.final_t = static_cast<double>(steps) * dt;
+  run.finite = std::all_of(states.begin(), states.end(), [](const BodyState& s) { return finite(s); });
+  run.engine_messages = ode ? ode->messages() : 0;
+  if (!full) return run;
+
+  if (own) attach_impulses(*own, dt, run.events);
+  run.wires = wires.reports();
+  const std::vector<RigidBody> start = make_bodies(scene);
+  set_body_states(posed, states);
+  run.stacks = report_stacks(find_stacks(posed, scene, settings.touch_tolerance),
+                             find_stacks(start, scene, settings.touch_tolerance), posed);
+  return run;
+}
+
+double growth_rate(const RunDifference& d, double perturbation) {
+  const auto largest = std::max_element(d.max_position.begin(), d.max_position.end());
+  if (largest == d.max_position.end() || !(*largest > 0.0) || !(perturbation > 0.0)) return 0.0;
+  const double t = d.t[static_cast<std::size_t>(largest - d.max_position.begin())];
+  return t > 0.0 ? std::log(*largest / perturbation) / t : 0.0;
+}
+
+std::string verdict(const RunDifference& d, const std::optional<double>& chaos_time) {
+  if (!d.position_passes) return "agree";
+  if (chaos_time && *d.position_passes >= kChaosFraction * *chaos_time) return "chaos";
+  return "differ";
+}
+
+// The frames of the first engine's run at which contact sets are checked: evenly spread (the last
+// at the end) and the one nearest after the deepest penetration.
+std::vector<std::pair<std::size_t, std::string>> contact_frames(const EngineRun& run, int count) {
+  std::vector<std::pair<std::size_t, std::string>> chosen;
+  const std::vector<double>& t = run.frames.t;
+  if (t.empty()) return chosen;
+  auto nearest_at_or_after = [&](double time) {
+    const auto it = std::lower_bound(t.begin(), t.end(), time - 1e-12);
+    return it == t.end() ? t.size() - 1 : static_cast<std::size_t>(it - t.begin());
+  };
+  for (int k = 1; k <= count; ++k) {
+    const double time = t.back() * k / count;
+    chosen.emplace_back(nearest_at_or_after(time),
+                        k == count ? std::string("the end") : std::to_string(100 * k / count) + "% of the run");
+  }
+  if (run.deepest.depth > 0.0) chosen.emplace_back(nearest_at_or_after(run.deepest_t), "the deepest penetration");
+  std::stable_sort(chosen.begin(), chosen.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  // One check per frame; the first reason given for it stays.
+  const auto same_frame = [](const auto& a, const auto& b) { return a.first == b.first; };
+  chosen.erase(std::unique(chosen.begin(), chosen.end(), same_frame), chosen.end());
+  return chosen;
+}
+
+}  // namespace
+
+EngineRun run_engine(const Scene& scene, std::string_view engine, const CompareSettings& settings,
+                     const std::function<void(double)>& progress) {
+  return run_one(scene, engine, settings, RunDetail::Full, progress);
+}
+
+Scene perturbed_scene(const Scene& scene, double distance) {
+  Scene s = scene;
+  const Vec3 down = scene.gravity.norm() > 0.0 ? Vec3(scene.gravity.normalized()) : Vec3(-Vec3::UnitZ());
+  // Two directions across gravity.
+  const Vec3 helper = std::abs(down.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 u = down.cross(helper).normalized();
+  const Vec3 v = down.cross(u);
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    BodyDesc& b = s.bodies[i];
+    if (b.fixed) continue;
+    Vec3 direction;
+    if (b.wire) {
+      // Along the wire, toward its middle, so that the anchor stays on it.
+      const Vec3 along = (b.wire->to - b.wire->from).normalized();
+      const double s_start = (b.frame.apply(b.wire->anchor) - b.wire->from).dot(along);
+      direction = 2.0 * s_start < (b.wire->to - b.wire->from).norm() ? along : Vec3(-along);
+    } else {
+      const double angle = kGoldenAngle * static_cast<double>(i);
+      direction = std::cos(angle) * u + std::sin(angle) * v;
+    }
+    b.frame.position += distance * direction;
+  }
+  return s;
+}
+
+RunDifference diff_runs(const std::string& a, const FrameSeries& fa, const std::string& b,
+                        const FrameSeries& fb, double position_threshold, double orientation_threshold) {
+  RunDifference d;
+  d.a = a;
+  d.b = b;
+  const std::size_t frames = std::min(fa.t.size(), fb.t.size());
+  d.t.assign(fa.t.begin(), fa.t.begin() + static_cast<std::ptrdiff_t>(frames));
+  const std::size_t n = frames > 0 ? fa.states[0].size() : 0;
+  d.bodies.resize(n);
+  d.max_position.assign(frames, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    BodyDifference& body = d.bodies[i];
+    body.name = fa.states[0][i].name;
+    body.position.resize(frames);
+    body.orientation.resize(frames);
+    for (std::size_t f = 0; f < frames; ++f) {
+      const BodyState& sa = fa.states[f][i];
+      const BodyState& sb = fb.states[f][i];
+      const double dp = (sa.position - sb.position).norm();
+      const double dq = sa.orientation.angularDistance(sb.orientation);
+      body.position[f] = dp;
+      body.orientation[f] = dq;
+      body.max_position = std::max(body.max_position, dp);
+      body.max_orientation = std::max(body.max_orientation, dq);
+      d.max_position[f] = std::max(d.max_position[f], dp);
+      if (!body.position_passes && dp > position_threshold) body.position_passes = d.t[f];
+      if (!body.orientation_passes && dq > orientation_threshold) body.orientation_passes = d.t[f];
+    }
+    if (body.max_position > d.largest_position || d.largest_position_body.empty()) {
+      d.largest_position = body.max_position;
+      d.largest_position_body = body.name;
+    }
+    if (body.max_orientation > d.largest_orientation || d.largest_orientation_body.empty()) {
+      d.largest_orientation = body.max_orientation;
+      d.largest_orientation_body = body.name;
+    }
+    auto earliest = [](std::optional<double>& into, const std::optional<double>& t) {
+      if (t && (!into || *t < *into)) into = t;
+    };
+    earliest(d.position_passes, body.position_passes);
+    earliest(d.orientation_passes, body.orientation_passes);
+  }
+  return d;
+}
+
+ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState>& states,
+                                 double touch_tolerance) {
+  ContactFrameCheck check;
+  std::vector<RigidBody> bodies = make_bodies(scene);
+  set_body_states(bodies, states);
+  CollisionSettings own_settings = scene.collision;
+  own_settings.margin = std::max(own_settings.margin, touch_tolerance);
+
+  std::vector<ContactPairCheck> pairs;
+  auto add = [&](int ia, int sa, int ib, int sb, const Manifold& own, const Manifold& ode, const Manifold& bullet) {
+    ContactPairCheck p;
+    p.body_a = ia;
+    p.shape_a = sa;
+    p.body_b = ib;
+    p.shape_b = sb;
+    p.own_points = own.size();
+    p.ode_points = ode.size();
+    p.bullet_points = bullet.size();
+    p.ode = diff_contacts(own, ode);
+    p.bullet = diff_contacts(own, bullet);
+    pairs.push_back(p);
+  };
+  auto box_of = [&](int body, int shape) {
+    const RigidBody& b = bodies[static_cast<std::size_t>(body)];
+    return OrientedBox::from(b.shape_pose(shape), b.shapes[static_cast<std::size_t>(shape)].half_extents);
+  };
+
+  const int n = static_cast<int>(bodies.size());
+  for (int i = 0; i < n; ++i) {
+    const RigidBody& bi = bodies[static_cast<std::size_t>(i)];
+    if (!bi.x.allFinite()) continue;
+    const int shapes_i = static_cast<int>(bi.shapes.size());
+    if (scene.ground && !bi.fixed) {
+      for (int s = 0; s < shapes_i; ++s) {
+        const OrientedBox box = box_of(i, s);
+        if (box_plane_depth(box, *scene.ground) < -touch_tolerance) continue;
+        Manifold own;
+        collide_box_plane(box, *scene.ground, touch_tolerance, own);
+        add(i, s, kGround, 0, own, ode_box_plane(box, *scene.ground), bullet_box_plane(box, *scene.ground));
+      }
+    }
+    const Aabb aabb_i = body_aabb(bi, touch_tolerance);
+    for (int j = i + 1; j < n; ++j) {
+      const RigidBody& bj = bodies[static_cast<std::size_t>(j)];
+      if ((bi.fixed && bj.fixed) || !bj.x.allFinite() || !aabb_i.overlaps(body_aabb(bj, 0.0))) continue;
+      for (int s = 0; s < shapes_i; ++s) {
+        const OrientedBox a = box_of(i, s);
+        for (int t = 0; t < static_cast<int>(bj.shapes.size()); ++t) {
+          const OrientedBox b = box_of(j, t);
+          if (box_box_sat(a, b, touch_tolerance).separation > touch_tolerance) continue;
+          Manifold own;
+          collide_box_box(a, b, own_settings, own);
+          add(i, s, j, t, own, ode_box_box(a, b), bullet_box_box(a, b));
+        }
+      }
+    }
+  }
+
+  check.pairs = static_cast<int>(pairs.size());
+  for (const ContactPairCheck& p : pairs) {
+    if (p.own_points != p.ode_points || p.own_points != p.bullet_points) ++check.count_mismatches;
+  }
+  using Getter = std::optional<double> (*)(const ContactDiff&);
+  const std::array<std::pair<const char*, Getter>, 3> metrics = {{
+      {"normal_angle", [](const ContactDiff& d) { return d.normal_angle; }},
+      {"depth_difference",
+       [](const ContactDiff& d) {
+         return d.depth_difference ? std::optional<double>(std::abs(*d.depth_difference)) : std::nullopt;
+       }},
+      {"point_distance", [](const ContactDiff& d) { return d.hull_distance; }},
+  }};
+  for (const auto& [metric, get] : metrics) {
+    const std::size_t first = check.worst.size();
+    for (const char* reference : {"ode", "bullet"}) {
+      const bool ode = std::string_view(reference) == "ode";
+      const ContactPairCheck* worst = nullptr;
+      double value = kNegligibleDisagreement;
+      for (const ContactPairCheck& p : pairs) {
+        const std::optional<double> v = get(ode ? p.ode : p.bullet);
+        if (v && *v > value) {
+          value = *v;
+          worst = &p;
+        }
+      }
+      if (worst) check.worst.push_back({metric, reference, value, *worst});
+    }
+    // Within each metric, the larger disagreement first.
+    std::stable_sort(check.worst.begin() + static_cast<std::ptrdiff_t>(first), check.worst.end(),
+                     [](const ContactDisagreement& a, const ContactDisagreement& b) { return a.value > b.value; });
+  }
+  return check;
+}
+
+CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
+  CompareResult result;
+  result.scene = scene;
+  result.settings = settings;
+  result.steps = step_count(scene);
+  std::vector<std::string> names;
+  for (const std::string& name : settings.engines) {
+    check_engine_name(name);  // all of them before the first run
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  result.settings.engines = names;
+  result.start_stacks = find_stacks(make_bodies(scene), scene, settings.touch_tolerance);
+
+  const Scene perturbed = perturbed_scene(scene, settings.perturbation);
+  const int total = 2 * static_cast<int>(names.size());
+  for (std::size_t e = 0; e < names.size(); ++e) {
+    auto progress_of = [&](bool baseline) {
+      return [&, baseline](double fraction) {
+        if (!settings.progress) return;
+        settings.progress({names[e], baseline, static_cast<int>(2 * e) + (baseline ? 1 : 0), total, fraction});
+      };
+    };
+    result.runs.push_back(run_one(scene, names[e], settings, RunDetail::Full, progress_of(false)));
+    const EngineRun again = run_one(perturbed, names[e], settings, RunDetail::StatesOnly, progress_of(true));
+    Baseline b;
+    b.engine = names[e];
+    b.divergence = diff_runs(names[e], result.runs.back().frames, names[e] + " perturbed", again.frames,
+                             settings.position_threshold, settings.orientation_threshold);
+    b.growth_rate = growth_rate(b.divergence, settings.perturbation);
+    result.baselines.push_back(std::move(b));
+  }
+
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    for (std::size_t j = i + 1; j < names.size(); ++j) {
+      PairComparison p;
+      p.difference = diff_runs(names[i], result.runs[i].frames, names[j], result.runs[j].frames,
+                               settings.position_threshold, settings.orientation_threshold);
+      for (const std::size_t k : {i, j}) {
+        const std::optional<double>& t = result.baselines[k].divergence.position_passes;
+        if (t && (!p.chaos_time || *t < *p.chaos_time)) p.chaos_time = t;
+      }
+      p.verdict = verdict(p.difference, p.chaos_time);
+      result.pairs.push_back(std::move(p));
+    }
+  }
+
+  if (!result.runs.empty()) {
+    const EngineRun& first = result.runs.front();
+    for (const auto& [frame, why] : contact_frames(first, settings.contact_check_frames)) {
+      ContactFrameCheck c = check_contacts(scene, first.frames.states[frame], settings.touch_tolerance);
+      c.engine = first.engine;
+      c.why = why;
+      c.frame = frame;
+      c.t = first.frames.t[frame];
+      result.contacts.push_back(std::move(c));
+    }
+  }
+  return result;
+}
+
+}  // namespace boxpile

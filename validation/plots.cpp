@@ -1,0 +1,169 @@
+#include "validation/plots.hpp"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace boxpile {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Colours a reader can tell apart (Okabe and Ito's colour-blind safe palette).
+constexpr std::array<const char*, 8> kPalette = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
+                                                 "#E69F00", "#56B4E9", "#F0E442", "#000000"};
+
+// gnuplot strings in single quotes take everything literally except the quote itself, doubled.
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    out += c;
+    if (c == '\'') out += '\'';
+  }
+  return out + "'";
+}
+
+std::string number(double x) {
+  if (!std::isfinite(x)) return "NaN";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", x);
+  return buf;
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream os(path);
+  os << text;
+  if (!os.flush()) throw PlotError(path.string() + ": cannot write: " + std::strerror(errno));
+}
+
+bool has_points(const PlotSeries& s) { return !s.x.empty() && !s.y.empty(); }
+
+std::string style_of(const PlotSeries& s) {
+  const std::string color = kPalette[static_cast<std::size_t>(s.color) % kPalette.size()];
+  switch (s.style) {
+    case PlotSeries::Style::Dashed:
+      return "with lines lw 1.2 dt 2 lc rgb '" + color + "'";
+    case PlotSeries::Style::Points:
+      return "with points pt 7 ps 0.5 lc rgb '" + color + "'";
+    case PlotSeries::Style::Line:
+      break;
+  }
+  return "with lines lw 1.5 lc rgb '" + color + "'";
+}
+
+}  // namespace
+
+void write_plot_files(const fs::path& dir, const PlotSpec& spec) {
+  // The data: one block per series (gnuplot's "index"), blocks separated by two blank lines.
+  std::ostringstream data;
+  data << "# " << spec.title << "\n# x: " << spec.xlabel << "; y: " << spec.ylabel << '\n';
+  std::vector<std::size_t> blocks;  // series index of each block
+  for (std::size_t k = 0; k < spec.series.size(); ++k) {
+    const PlotSeries& s = spec.series[k];
+    if (!has_points(s)) continue;
+    if (!blocks.empty()) data << "\n\n";
+    data << "# " << s.title << '\n';
+    blocks.push_back(k);
+    const std::size_t n = std::min(s.x.size(), s.y.size());
+    for (std::size_t i = 0; i < n; ++i) {
+      const double y = spec.log_y && std::isfinite(s.y[i]) ? std::max(s.y[i], spec.log_floor) : s.y[i];
+      data << number(s.x[i]) << ' ' << number(y) << '\n';
+    }
+  }
+  write_text(dir / (spec.name + ".dat"), data.str());
+
+  std::ostringstream gp;
+  gp << "# " << spec.title << ": rerun with `gnuplot " << spec.name << ".gp` in this directory.\n"
+     << "set terminal svg size 900,480 dynamic enhanced font 'Helvetica,13' background '#ffffff'\n"
+     << "set output " << quoted(spec.name + ".svg") << '\n'
+     << "set title " << quoted(spec.title) << " noenhanced\n"
+     << "set xlabel " << quoted(spec.xlabel) << " noenhanced\n"
+     << "set ylabel " << quoted(spec.ylabel) << " noenhanced\n"
+     << "set grid lc rgb '#dddddd'\n"
+     << "set key outside right top noenhanced\n"
+     << "set datafile missing 'NaN'\n";
+  if (spec.log_y) gp << "set logscale y\nset format y '10^{%L}'\n";
+  std::vector<std::string> parts;
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    const PlotSeries& s = spec.series[blocks[b]];
+    parts.push_back(quoted(spec.name + ".dat") + " index " + std::to_string(b) + " using 1:2 " + style_of(s) +
+                    " title " + quoted(s.title));
+  }
+  if (spec.hline) {
+    parts.push_back(number(*spec.hline) + " with lines lw 1 dt 3 lc rgb '#777777' title " + quoted(spec.hline_title));
+  }
+  if (parts.empty()) {
+    // Nothing to draw: an empty frame says so rather than a gnuplot error.
+    gp << "set label 1 'no data' at graph 0.5, graph 0.5 center\nset xrange [0:1]\nset yrange [0:1]\n"
+       << "plot NaN notitle\n";
+  } else {
+    gp << "plot ";
+    for (std::size_t i = 0; i < parts.size(); ++i) gp << (i == 0 ? "" : ", \\\n     ") << parts[i];
+    gp << '\n';
+  }
+  write_text(dir / (spec.name + ".gp"), gp.str());
+}
+
+void render_plot(const fs::path& dir, const std::string& name) {
+  const fs::path log = dir / (name + ".log");
+  const std::string script = name + ".gp";
+  const pid_t pid = fork();
+  if (pid < 0) throw PlotError(std::string("cannot start gnuplot: ") + std::strerror(errno));
+  if (pid == 0) {
+    // The child: gnuplot in the plot's directory, its messages into the log.
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      dup2(fd, STDOUT_FILENO);
+      dup2(fd, STDERR_FILENO);
+      close(fd);
+    }
+    if (chdir(dir.c_str()) != 0) _exit(126);
+    execlp("gnuplot", "gnuplot", script.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) throw PlotError(std::string("waiting for gnuplot: ") + std::strerror(errno));
+  }
+  std::string messages;
+  {
+    std::ifstream in(log);
+    std::ostringstream all;
+    all << in.rdbuf();
+    messages = all.str();
+  }
+  std::error_code ignored;
+  fs::remove(log, ignored);
+  const fs::path svg = dir / (name + ".svg");
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::exists(svg)) {
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::string why = code == 127 ? "gnuplot not found (scripts/install-deps installs gnuplot-nox)"
+                                  : "gnuplot failed (exit " + std::to_string(code) + ")";
+    if (!messages.empty()) why += ": " + messages;
+    throw PlotError(name + ".svg: " + why);
+  }
+}
+
+bool gnuplot_available() {
+  const char* path = std::getenv("PATH");
+  if (!path) return false;
+  std::stringstream dirs(path);
+  std::string d;
+  while (std::getline(dirs, d, ':')) {
+    const fs::path candidate = (d.empty() ? fs::current_path() : fs::path(d)) / "gnuplot";
+    if (access(candidate.c_str(), X_OK) == 0) return true;
+  }
+  return false;
+}
+
+}  // namespace boxpile

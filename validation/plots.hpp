@@ -1,0 +1,48 @@
+// Line plots rendered as SVG by gnuplot (Debian's gnuplot-nox). Each plot NAME is three files in
+// one directory: NAME.dat (the data, one block per series), NAME.gp (the gnuplot script, which
+// reads NAME.dat and writes NAME.svg by relative names, so it can be rerun in place) and NAME.svg.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace boxpile {
+
+struct PlotSeries {
+  enum class Style { Line, Dashed, Points };
+  std::string title;
+  std::vector<double> x, y;
+  Style style = Style::Line;
+  int color = 0;  // index into the plot palette; series of one engine share a colour
+};
+
+struct PlotSpec {
+  std::string name;  // file stem
+  std::string title, xlabel, ylabel;
+  bool log_y = false;
+  // On a log axis, values below this are drawn at it (a difference of exactly 0 has no logarithm).
+  double log_floor = 1e-12;
+  std::optional<double> hline;  // a dotted horizontal line (a threshold)
+  std::string hline_title;
+  std::vector<PlotSeries> series;
+};
+
+class PlotError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Writes NAME.dat and NAME.gp into `dir`. Series without points are left out of the script.
+void write_plot_files(const std::filesystem::path& dir, const PlotSpec& spec);
+
+// Runs gnuplot on NAME.gp in `dir`, making NAME.svg; throws PlotError with gnuplot's message when
+// it fails or cannot be started.
+void render_plot(const std::filesystem::path& dir, const std::string& name);
+
+// Whether a gnuplot executable is on the PATH.
+bool gnuplot_available();
+
+}  // namespace boxpile

@@ -1,0 +1,519 @@
+#include "validation/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "validation/cli/json_output.hpp"
+
+namespace boxpile {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Bodies listed per pair of engines under "largest disagreements".
+constexpr std::size_t kBodiesListed = 3;
+
+std::string fmt(double x, const char* format = "%.4g") {
+  if (std::isnan(x)) return "nan";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, x);
+  return buf;
+}
+
+std::string seconds(double t) { return fmt(t, "%.3f") + " s"; }
+
+std::string optional_seconds(const std::optional<double>& t) { return t ? seconds(*t) : std::string("never"); }
+
+json optional_number(const std::optional<double>& x) { return x ? json(*x) : json(nullptr); }
+
+std::string body_name(const Scene& scene, int index) {
+  return index == kGround ? std::string("ground") : scene.bodies[static_cast<std::size_t>(index)].name;
+}
+
+json bodies_json(const std::vector<BodyState>& states) {
+  json bodies = json::array();
+  for (const BodyState& s : states) {
+    bodies.push_back({{"name", s.name},
+                      {"position", to_json(s.position)},
+                      {"orientation", to_json(s.orientation)},
+                      {"velocity", to_json(s.velocity)},
+                      {"angular_velocity", to_json(s.angular_velocity)}});
+  }
+  return bodies;
+}
+
+json diff_json(const ContactDiff& d) {
+  return {{"normal_angle", optional_number(d.normal_angle)},
+          {"depth_difference", optional_number(d.depth_difference)},
+          {"point_distance", optional_number(d.hull_distance)},
+          {"hausdorff", optional_number(d.hausdorff)}};
+}
+
+json engine_json(const CompareResult& r, const EngineRun& run, const Baseline& baseline) {
+  const Scene& scene = r.scene;
+  json stacks = json::array();
+  for (const StackReport& s : run.stacks) {
+    stacks.push_back({{"bodies", s.bodies}, {"height", s.height}, {"ideal", optional_number(s.ideal)},
+                      {"error", optional_number(s.error)}});
+  }
+  json events = json::array();
+  for (const ImpactEvent& e : run.events) {
+    json ev = {{"t", e.t}, {"body_a", body_name(scene, e.body_a)}, {"body_b", body_name(scene, e.body_b)},
+               {"approach_speed", e.approach_speed}};
+    if (e.impulse) ev["impulse"] = *e.impulse;
+    events.push_back(std::move(ev));
+  }
+  json wires = json::array();
+  for (const WireReport& w : run.wires) {
+    wires.push_back({{"body", w.body}, {"max_off", w.max_off}, {"max_past_end", w.max_past_end},
+                     {"final_along", w.final_along}, {"length", w.length}});
+  }
+  const RunDifference& d = baseline.divergence;
+  return {{"final", {{"t", run.final_t}, {"bodies", bodies_json(run.final_states)}}},
+          {"stacks", stacks},
+          {"us_per_step", run.us_per_step},
+          {"wall_seconds", run.wall_seconds},
+          {"steps", run.steps},
+          {"max_penetration", run.deepest.depth},
+          {"max_penetration_at",
+           {{"t", run.deepest_t},
+            {"body_a", run.deepest.body_a >= 0 ? json(body_name(scene, run.deepest.body_a)) : json(nullptr)},
+            {"body_b", run.deepest.body_a >= 0 ? json(body_name(scene, run.deepest.body_b)) : json(nullptr)}}},
+          {"energy",
+           {{"initial", run.energy_initial}, {"final", run.energy_final}, {"max", run.energy_max},
+            {"max_t", run.energy_max_t}}},
+          {"levitation", {{"max", run.levitation_max}, {"final", run.levitation_final}}},
+          {"events", events},
+          {"wires", wires},
+          {"finite", run.finite},
+          {"engine_messages", run.engine_messages},
+          {"baseline",
+           {{"perturbation", r.settings.perturbation},
+            {"largest_position_difference", d.largest_position},
+            {"largest_position_body", d.largest_position_body},
+            {"largest_orientation_difference", d.largest_orientation},
+            {"position_passes", optional_number(d.position_passes)},
+            {"orientation_passes", optional_number(d.orientation_passes)},
+            {"growth_rate", baseline.growth_rate},
+            {"max_position", d.max_position}}},
+          {"series",
+           {{"t", run.frames.t},
+            {"energy", run.frames.energy},
+            {"penetration", run.frames.penetration},
+            {"levitation", run.frames.levitation},
+            {"stack_height", run.frames.stack_height}}}};
+}
+
+json pair_json(const CompareResult& r, const PairComparison& p) {
+  const RunDifference& d = p.difference;
+  json bodies = json::array();
+  for (const BodyDifference& b : d.bodies) {
+    bodies.push_back({{"name", b.name},
+                      {"position", b.position},
+                      {"orientation", b.orientation},
+                      {"max_position", b.max_position},
+                      {"max_orientation", b.max_orientation},
+                      {"position_passes", optional_number(b.position_passes)},
+                      {"orientation_passes", optional_number(b.orientation_passes)}});
+  }
+  return {{"engines", {d.a, d.b}},
+          {"position_threshold", r.settings.position_threshold},
+          {"orientation_threshold", r.settings.orientation_threshold},
+          {"largest_position_difference", d.largest_position},
+          {"largest_position_body", d.largest_position_body},
+          {"largest_orientation_difference", d.largest_orientation},
+          {"largest_orientation_body", d.largest_orientation_body},
+          {"position_passes", optional_number(d.position_passes)},
+          {"orientation_passes", optional_number(d.orientation_passes)},
+          {"chaos_time", optional_number(p.chaos_time)},
+          {"verdict", p.verdict},
+          {"t", d.t},
+          {"max_position", d.max_position},
+          {"bodies", bodies}};
+}
+
+json contacts_json(const CompareResult& r, const ContactFrameCheck& c) {
+  json worst = json::array();
+  for (const ContactDisagreement& w : c.worst) {
+    const ContactPairCheck& p = w.pair;
+    worst.push_back({{"metric", w.metric},
+                     {"reference", w.reference},
+                     {"value", w.value},
+                     {"body_a", body_name(r.scene, p.body_a)},
+                     {"shape_a", p.shape_a},
+                     {"body_b", body_name(r.scene, p.body_b)},
+                     {"shape_b", p.shape_b},
+                     {"points", {{"own", p.own_points}, {"ode", p.ode_points}, {"bullet", p.bullet_points}}},
+                     {"ode", diff_json(p.ode)},
+                     {"bullet", diff_json(p.bullet)}});
+  }
+  return {{"engine", c.engine}, {"why", c.why},     {"frame", c.frame},
+          {"t", c.t},           {"pairs", c.pairs}, {"count_mismatches", c.count_mismatches},
+          {"worst", worst}};
+}
+
+// Value of a series at time t, linear between recorded frames.
+double at_time(const std::vector<double>& t, const std::vector<double>& y, double time) {
+  if (t.empty() || y.empty()) return std::nan("");
+  const auto it = std::lower_bound(t.begin(), t.end(), time);
+  if (it == t.begin()) return y.front();
+  if (it == t.end()) return y.back();
+  const auto k = static_cast<std::size_t>(it - t.begin());
+  const double s = (time - t[k - 1]) / (t[k] - t[k - 1]);
+  return y[k - 1] + s * (y[k] - y[k - 1]);
+}
+
+std::string dt_text(double dt) {
+  const double per_second = 1.0 / dt;
+  const double rounded = std::round(per_second);
+  return fmt(dt, "%.6g") + " s" + (std::abs(per_second - rounded) < 1e-6 ? " (1/" + fmt(rounded, "%.0f") + ")" : "");
+}
+
+// Markdown and terminal tables share the rows: a label and one cell per engine.
+struct Row {
+  std::string label;
+  std::vector<std::string> cells;
+};
+
+std::vector<Row> engine_rows(const CompareResult& r) {
+  std::vector<Row> rows;
+  auto add = [&](std::string label, auto cell) {
+    Row row{std::move(label), {}};
+    for (std::size_t e = 0; e < r.runs.size(); ++e) row.cells.push_back(cell(r.runs[e], r.baselines[e]));
+    rows.push_back(std::move(row));
+  };
+  add("us per step", [](const EngineRun& run, const Baseline&) { return fmt(run.us_per_step, "%.1f"); });
+  add("energy at start (J)", [](const EngineRun& run, const Baseline&) { return fmt(run.energy_initial, "%.2f"); });
+  add("energy at end (J)", [](const EngineRun& run, const Baseline&) { return fmt(run.energy_final, "%.2f"); });
+  add("largest energy (J)", [](const EngineRun& run, const Baseline&) {
+    return fmt(run.energy_max, "%.2f") + " at " + seconds(run.energy_max_t);
+  });
+  add("deepest penetration (m)", [&](const EngineRun& run, const Baseline&) {
+    if (run.deepest.body_a < 0) return std::string("0");
+    return fmt(run.deepest.depth, "%.2e") + " at " + seconds(run.deepest_t) + " (" +
+           body_name(r.scene, run.deepest.body_a) + "/" + body_name(r.scene, run.deepest.body_b) + ")";
+  });
+  add("largest levitation (m)", [](const EngineRun& run, const Baseline&) { return fmt(run.levitation_max, "%.2e"); });
+  add("impacts", [](const EngineRun& run, const Baseline&) { return std::to_string(run.events.size()); });
+  add("stacks at the end", [](const EngineRun& run, const Baseline&) { return std::to_string(run.stacks.size()); });
+  add("tallest stack (m)", [](const EngineRun& run, const Baseline&) {
+    const auto lower = [](const StackReport& a, const StackReport& b) { return a.height < b.height; };
+    const auto tallest = std::max_element(run.stacks.begin(), run.stacks.end(), lower);
+    if (tallest == run.stacks.end()) return std::string("-");
+    std::string s = fmt(tallest->height, "%.5f");
+    if (tallest->error) s += " (error " + fmt(*tallest->error, "%.2e") + ")";
+    return s;
+  });
+  if (!r.runs.empty() && !r.runs.front().wires.empty()) {
+    add("anchor off the wire (m)", [](const EngineRun& run, const Baseline&) {
+      double worst = 0.0;
+      for (const WireReport& w : run.wires) worst = std::max(worst, w.max_off);
+      return fmt(worst, "%.2e");
+    });
+    add("anchor past an end (m)", [](const EngineRun& run, const Baseline&) {
+      double worst = 0.0;
+      for (const WireReport& w : run.wires) worst = std::max(worst, w.max_past_end);
+      return fmt(worst, "%.2e");
+    });
+  }
+  add("self-divergence passes " + fmt(r.settings.position_threshold) + " m",
+      [](const EngineRun&, const Baseline& b) { return optional_seconds(b.divergence.position_passes); });
+  add("self-divergence growth (1/s)", [](const EngineRun&, const Baseline& b) { return fmt(b.growth_rate, "%.3g"); });
+  return rows;
+}
+
+std::string markdown_table(const std::vector<std::string>& header, const std::vector<Row>& rows) {
+  std::ostringstream os;
+  os << "|";
+  for (const std::string& h : header) os << ' ' << h << " |";
+  os << "\n|";
+  for (std::size_t i = 0; i < header.size(); ++i) os << (i == 0 ? "---|" : "---:|");
+  os << '\n';
+  for (const Row& row : rows) {
+    os << "| " << row.label << " |";
+    for (const std::string& c : row.cells) os << ' ' << c << " |";
+    os << '\n';
+  }
+  return os.str();
+}
+
+std::string plain_table(const std::vector<std::string>& header, const std::vector<Row>& rows) {
+  std::vector<std::size_t> width(header.size(), 0);
+  for (std::size_t i = 0; i < header.size(); ++i) width[i] = header[i].size();
+  for (const Row& row : rows) {
+    width[0] = std::max(width[0], row.label.size());
+    for (std::size_t i = 0; i < row.cells.size(); ++i) width[i + 1] = std::max(width[i + 1], row.cells[i].size());
+  }
+  std::ostringstream os;
+  auto line = [&](const std::string& first, const std::vector<std::string>& rest) {
+    os << "  " << first << std::string(width[0] - first.size(), ' ');
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+      os << "  " << std::string(width[i + 1] - rest[i].size(), ' ') << rest[i];
+    }
+    os << '\n';
+  };
+  line(header[0], std::vector<std::string>(header.begin() + 1, header.end()));
+  for (const Row& row : rows) line(row.label, row.cells);
+  return os.str();
+}
+
+std::vector<std::string> engine_header(const CompareResult& r, const std::string& first) {
+  std::vector<std::string> header{first};
+  for (const EngineRun& run : r.runs) header.push_back(run.engine);
+  return header;
+}
+
+std::string pair_line(const PairComparison& p, double threshold) {
+  const RunDifference& d = p.difference;
+  std::string s = d.a + " vs " + d.b + ": largest position difference " + fmt(d.largest_position, "%.3g") + " m (" +
+                  d.largest_position_body + "), ";
+  s += d.position_passes ? "passes " + fmt(threshold) + " m at " + seconds(*d.position_passes)
+                         : "never passes " + fmt(threshold) + " m";
+  s += p.chaos_time ? "; engines diverge from themselves by " + seconds(*p.chaos_time)
+                    : std::string("; neither diverges from itself that far");
+  s += "; verdict: " + p.verdict;
+  return s;
+}
+
+std::string verdict_text(const std::string& verdict) {
+  if (verdict == "agree") return "agree within the threshold";
+  if (verdict == "chaos") return "differ no sooner than chaos explains";
+  return "differ before chaos explains it";
+}
+
+}  // namespace
+
+json report_json(const CompareResult& r) {
+  json engines = json::object();
+  for (std::size_t e = 0; e < r.runs.size(); ++e) engines[r.runs[e].engine] = engine_json(r, r.runs[e], r.baselines[e]);
+  json pairs = json::array();
+  for (const PairComparison& p : r.pairs) pairs.push_back(pair_json(r, p));
+  json contacts = json::array();
+  for (const ContactFrameCheck& c : r.contacts) contacts.push_back(contacts_json(r, c));
+  json start_stacks = json::array();
+  for (const Stack& s : r.start_stacks) {
+    json names = json::array();
+    for (int i : s.bodies) names.push_back(body_name(r.scene, i));
+    start_stacks.push_back({{"bodies", names}, {"height", s.height}});
+  }
+  return {{"scene", r.scene.name},
+          {"scene_file", r.scene.source},
+          {"dt", r.scene.time.dt},
+          {"duration", r.scene.time.duration},
+          {"steps", r.steps},
+          {"settings",
+           {{"perturbation", r.settings.perturbation},
+            {"frame_rate", r.settings.frame_rate},
+            {"position_threshold", r.settings.position_threshold},
+            {"orientation_threshold", r.settings.orientation_threshold},
+            {"touch_tolerance", r.settings.touch_tolerance}}},
+          {"start_stacks", start_stacks},
+          {"engines", engines},
+          {"pairs", pairs},
+          {"contacts", contacts}};
+}
+
+std::vector<PlotSpec> report_plots(const CompareResult& r) {
+  using Style = PlotSeries::Style;
+  std::vector<PlotSpec> plots;
+
+  PlotSpec energy{"energy", "Total energy (kinetic + potential), impacts marked", "t (s)", "energy (J)", false, 1e-12,
+                  std::nullopt, "", {}};
+  PlotSpec penetration{"penetration", "Deepest penetration between any two bodies or a body and the ground", "t (s)",
+                       "depth (m)", false, 1e-12, std::nullopt, "", {}};
+  PlotSpec stacks{"stack_height", "Height of the tallest stack", "t (s)", "height (m)", false, 1e-12, std::nullopt,
+                  "", {}};
+  PlotSpec difference{"position_difference",
+                      "Largest body position difference: between engines (solid), from a " +
+                          fmt(r.settings.perturbation) + " m perturbed start (dashed)",
+                      "t (s)", "difference (m)", true, 1e-12, r.settings.position_threshold, "threshold", {}};
+  double tallest_start = 0.0;
+  for (const Stack& s : r.start_stacks) tallest_start = std::max(tallest_start, s.height);
+  if (tallest_start > 0.0) {
+    stacks.hline = tallest_start;
+    stacks.hline_title = "at the start";
+  }
+
+  for (std::size_t e = 0; e < r.runs.size(); ++e) {
+    const EngineRun& run = r.runs[e];
+    const int color = static_cast<int>(e);
+    energy.series.push_back({run.engine, run.frames.t, run.frames.energy, Style::Line, color});
+    PlotSeries impacts{run.engine + " impacts", {}, {}, Style::Points, color};
+    for (const ImpactEvent& ev : run.events) {
+      impacts.x.push_back(ev.t);
+      impacts.y.push_back(at_time(run.frames.t, run.frames.energy, ev.t));
+    }
+    energy.series.push_back(std::move(impacts));
+    penetration.series.push_back({run.engine, run.frames.t, run.frames.penetration, Style::Line, color});
+    stacks.series.push_back({run.engine, run.frames.t, run.frames.stack_height, Style::Line, color});
+  }
+  for (std::size_t p = 0; p < r.pairs.size(); ++p) {
+    const RunDifference& d = r.pairs[p].difference;
+    difference.series.push_back({d.a + " vs " + d.b, d.t, d.max_position, Style::Line,
+                                 static_cast<int>(r.runs.size() + p)});
+  }
+  for (std::size_t e = 0; e < r.baselines.size(); ++e) {
+    const RunDifference& d = r.baselines[e].divergence;
+    difference.series.push_back({d.b, d.t, d.max_position, Style::Dashed, static_cast<int>(e)});
+  }
+  plots.push_back(std::move(energy));
+  plots.push_back(std::move(penetration));
+  plots.push_back(std::move(stacks));
+  plots.push_back(std::move(difference));
+  return plots;
+}
+
+std::string report_markdown(const CompareResult& r, const std::vector<std::string>& plots,
+                            const std::vector<std::string>& notes) {
+  std::ostringstream md;
+  const Scene& s = r.scene;
+  md << "# boxpile compare: " << s.name << "\n\n";
+  if (!s.note.empty()) md << s.note << "\n\n";
+  md << "## What was run\n\n"
+     << "- scene: `" << s.source << "` (" << s.bodies.size() << " bodies)\n"
+     << "- engines: ";
+  for (std::size_t e = 0; e < r.runs.size(); ++e) md << (e ? ", " : "") << r.runs[e].engine;
+  md << "\n- time step " << dt_text(s.time.dt) << ", " << fmt(s.time.duration) << " s simulated (" << r.steps
+     << " steps), frames recorded at " << fmt(r.settings.frame_rate) << " per second\n"
+     << "- baseline: each engine run a second time with every free body moved by " << fmt(r.settings.perturbation)
+     << " m at the start\n"
+     << "- thresholds: position " << fmt(r.settings.position_threshold) << " m, orientation "
+     << fmt(r.settings.orientation_threshold) << " rad; bodies within " << fmt(r.settings.touch_tolerance)
+     << " m touch\n\n";
+  for (const EngineRun& run : r.runs) {
+    if (!run.finite) md << "**" << run.engine << " blew up: some states are not finite at the end.**\n\n";
+    if (run.engine_messages > 0) md << run.engine << " printed " << run.engine_messages << " solver message(s).\n\n";
+  }
+
+  md << "## Per engine\n\n" << markdown_table(engine_header(r, "metric"), engine_rows(r)) << '\n';
+  md << "Energy is measured the same way for every engine from its body states (the scene's bodies "
+        "only). Impacts are pairs approaching faster than resting contact explains, found the same way "
+        "for every engine from the contact set of each step and the velocities before it.\n\n";
+
+  md << "### Stacks at the end\n\n";
+  for (const EngineRun& run : r.runs) {
+    md << "- " << run.engine << ": ";
+    if (run.stacks.empty()) md << "none";
+    for (std::size_t k = 0; k < run.stacks.size(); ++k) {
+      const StackReport& st = run.stacks[k];
+      md << (k ? "; " : "") << st.bodies.size() << (st.bodies.size() == 1 ? " body, " : " bodies, ")
+         << fmt(st.height, "%.5f") << " m";
+      if (st.ideal) md << " (ideal " << fmt(*st.ideal, "%.5f") << ", error " << fmt(*st.error, "%.2e") << ")";
+    }
+    md << '\n';
+  }
+  md << '\n';
+
+  if (!r.pairs.empty()) {
+    md << "## Between engines\n\n"
+       << "| engines | largest position difference | largest orientation difference | passes "
+       << fmt(r.settings.position_threshold) << " m | engines diverge from themselves | verdict |\n"
+       << "|---|---:|---:|---:|---:|---|\n";
+    for (const PairComparison& p : r.pairs) {
+      const RunDifference& d = p.difference;
+      md << "| " << d.a << " vs " << d.b << " | " << fmt(d.largest_position, "%.3g") << " m ("
+         << d.largest_position_body
+         << ") | " << fmt(d.largest_orientation, "%.3g") << " rad (" << d.largest_orientation_body << ") | "
+         << optional_seconds(d.position_passes) << " | " << optional_seconds(p.chaos_time) << " | "
+         << verdict_text(p.verdict) << " |\n";
+    }
+    md << "\nA pair *differs* when its position difference passes the threshold earlier than half the time "
+          "either engine takes to pass it against its own perturbed run; later than that, chaos "
+          "explains it.\n\n";
+  }
+
+  if (!plots.empty()) {
+    md << "## Plots\n\n";
+    for (const std::string& p : plots) md << "![" << p << "](" << p << ".svg)\n\n";
+    md << "Each plot's data (`NAME.dat`) and gnuplot script (`NAME.gp`) are beside it.\n\n";
+  }
+
+  md << "## Largest disagreements\n\n";
+  for (const PairComparison& p : r.pairs) {
+    std::vector<const BodyDifference*> bodies;
+    for (const BodyDifference& b : p.difference.bodies) bodies.push_back(&b);
+    std::sort(bodies.begin(), bodies.end(),
+              [](const BodyDifference* a, const BodyDifference* b) { return a->max_position > b->max_position; });
+    md << "- " << p.difference.a << " vs " << p.difference.b << ": ";
+    for (std::size_t k = 0; k < std::min(kBodiesListed, bodies.size()); ++k) {
+      md << (k ? ", " : "") << bodies[k]->name << " " << fmt(bodies[k]->max_position, "%.3g") << " m (passes at "
+         << optional_seconds(bodies[k]->position_passes) << ")";
+    }
+    md << '\n';
+  }
+  md << '\n';
+  if (!r.contacts.empty()) {
+    md << "Contact sets below: on one engine's poses, every pair of boxes within "
+       << fmt(r.settings.touch_tolerance) << " m (and every box near the ground) through all three detectors, "
+       << "each reference against ours: `normal_angle` between the mean normals, `depth_difference` of the "
+       << "deepest points, `point_distance` how far the smaller point set lies outside the contact region of "
+       << "the larger (0 when one lies within the other's). The largest of each kind is listed.\n\n";
+  }
+  for (const ContactFrameCheck& c : r.contacts) {
+    md << "### Contact sets at t = " << seconds(c.t) << " (" << c.why << ", " << c.engine << "'s poses)\n\n"
+       << c.pairs << " touching pairs, each through our detector, ODE's and Bullet's; " << c.count_mismatches
+       << " give different point counts.\n\n";
+    if (c.worst.empty()) {
+      md << "No disagreement above rounding (1e-9) in normals, deepest depths or contact regions.\n\n";
+      continue;
+    }
+    md << "| largest | against | value | pair | points own / ode / bullet |\n|---|---|---:|---|---|\n";
+    for (const ContactDisagreement& w : c.worst) {
+      const ContactPairCheck& pc = w.pair;
+      const bool angle = w.metric == "normal_angle";
+      md << "| " << w.metric << " | " << w.reference << " | " << fmt(w.value, "%.3g") << (angle ? " rad" : " m")
+         << " | "
+         << body_name(s, pc.body_a) << "[" << pc.shape_a << "] / " << body_name(s, pc.body_b);
+      if (pc.body_b != kGround) md << "[" << pc.shape_b << "]";
+      md << " | " << pc.own_points << " / " << pc.ode_points << " / " << pc.bullet_points << " |\n";
+    }
+    md << '\n';
+  }
+  if (!notes.empty()) {
+    md << "## Notes\n\n";
+    for (const std::string& n : notes) md << "- " << n << '\n';
+    md << '\n';
+  }
+  md << "How to read this report: docs/compare.md in the boxpile sources. The same figures, and the "
+        "series behind the plots, are in report.json.\n";
+  return md.str();
+}
+
+std::string summary_table(const CompareResult& r) {
+  std::ostringstream os;
+  os << "scene " << r.scene.name << ": " << r.steps << " steps of " << dt_text(r.scene.time.dt) << '\n'
+     << plain_table(engine_header(r, ""), engine_rows(r));
+  for (const PairComparison& p : r.pairs) os << "  " << pair_line(p, r.settings.position_threshold) << '\n';
+  return os.str();
+}
+
+void write_report(const CompareResult& r, const fs::path& dir, std::vector<std::string>& notes) {
+  {
+    std::ofstream os(dir / "report.json");
+    os << report_json(r).dump(1) << '\n';
+    if (!os.flush()) throw std::runtime_error((dir / "report.json").string() + ": write failed");
+  }
+  std::vector<std::string> rendered;
+  const bool gnuplot = gnuplot_available();
+  if (!gnuplot) notes.push_back("gnuplot not found (scripts/install-deps installs gnuplot-nox): plots not rendered; "
+                                "their data and scripts are written");
+  for (const PlotSpec& spec : report_plots(r)) {
+    write_plot_files(dir, spec);
+    if (!gnuplot) continue;
+    try {
+      render_plot(dir, spec.name);
+      rendered.push_back(spec.name);
+    } catch (const PlotError& e) {
+      notes.push_back(e.what());
+    }
+  }
+  std::ofstream os(dir / "report.md");
+  os << report_markdown(r, rendered, notes);
+  if (!os.flush()) throw std::runtime_error((dir / "report.md").string() + ": write failed");
+}
+
+}  // namespace boxpile

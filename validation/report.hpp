@@ -1,0 +1,35 @@
+// The compare report: report.json (fixed keys that other tools read), report.md (a short report
+// for people), the plots, and the summary printed on the terminal. docs/compare.md describes them.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "validation/compare.hpp"
+#include "validation/plots.hpp"
+
+namespace boxpile {
+
+nlohmann::json report_json(const CompareResult& result);
+
+// The plots of a report: energy (impacts marked), deepest penetration, tallest stack, and the
+// position difference between engines with each engine's perturbed baseline.
+std::vector<PlotSpec> report_plots(const CompareResult& result);
+
+// report.md; `plots` are the plot names that were rendered (NAME.svg beside report.md), and
+// `notes` are lines for a "Notes" section (warnings met while writing).
+std::string report_markdown(const CompareResult& result, const std::vector<std::string>& plots,
+                            const std::vector<std::string>& notes);
+
+// A table of the main figures per engine and one line per pair of engines, for the terminal.
+std::string summary_table(const CompareResult& result);
+
+// Writes report.json, report.md and the plots into `dir`. Plots that gnuplot cannot render are
+// reported in `notes` (and in report.md); their data and scripts are still written.
+void write_report(const CompareResult& result, const std::filesystem::path& dir,
+                  std::vector<std::string>& notes);
+
+}  // namespace boxpile

@@ -1,0 +1,103 @@
+#include "validation/report_directory.hpp"
+
+#include <fcntl.h>
+#include <stdio.h>  // renameat2 (glibc 2.28)
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace boxpile {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The one file that marks a directory as a boxpile report (and so safe to replace).
+constexpr const char* kMarker = "report.json";
+
+[[noreturn]] void refuse(const fs::path& target, const std::string& why) {
+  throw ReportDirectoryError("report directory " + target.string() + ": " + why);
+}
+
+void check_target(const fs::path& target) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(target, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory) refuse(target, ec.message());
+  if (!fs::exists(st)) return;
+  if (!fs::is_directory(st)) refuse(target, "exists and is not a directory");
+  const bool empty = fs::is_empty(target, ec);
+  if (ec) refuse(target, ec.message());
+  if (!empty && !fs::exists(target / kMarker)) {
+    refuse(target, "exists and holds no report.json: not a boxpile report, so it is left alone; "
+                   "choose another directory");
+  }
+}
+
+}  // namespace
+
+ReportDirectory::ReportDirectory(fs::path target) : target_(std::move(target)) {
+  if (target_.empty()) refuse(target_, "no directory given");
+  // "out/" names the directory "out": drop the trailing separator, so that its parent is found.
+  if (!target_.has_filename()) target_ = target_.parent_path();
+  check_target(target_);
+  const fs::path parent = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) refuse(target_, "cannot create " + parent.string() + ": " + ec.message());
+  // A hidden sibling, so that the final rename stays on one file system.
+  std::string name(1, '.');
+  name += target_.filename().string();
+  name += ".tmp-XXXXXX";
+  const std::string pattern = (parent / name).string();
+  std::vector<char> buf(pattern.begin(), pattern.end());
+  buf.push_back('\0');
+  if (!mkdtemp(buf.data())) {
+    refuse(target_, std::string("cannot write in ") + parent.string() + ": " + std::strerror(errno));
+  }
+  staging_ = fs::path(buf.data());
+  // mkdtemp makes it private (0700); the report gets the permissions of any new directory.
+  const mode_t mask = umask(0);
+  umask(mask);
+  chmod(staging_.c_str(), 0777 & ~mask);
+}
+
+ReportDirectory::~ReportDirectory() {
+  if (committed_ || staging_.empty()) return;
+  std::error_code ignored;
+  fs::remove_all(staging_, ignored);
+}
+
+void ReportDirectory::commit() {
+  check_target(target_);  // it may have changed during the run
+  std::error_code ec;
+  if (!fs::exists(target_, ec)) {
+    fs::rename(staging_, target_, ec);
+    if (ec) refuse(target_, "cannot rename the finished report into place: " + ec.message());
+    committed_ = true;
+    return;
+  }
+  // Swap the two directories in one step, then delete the old report (now at the staging path).
+  if (renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) == 0) {
+    committed_ = true;
+    fs::remove_all(staging_, ec);
+    return;
+  }
+  // No exchange on this file system: move the old report aside, the new one in, the old one out.
+  const fs::path old = staging_.string() + "-old";
+  fs::rename(target_, old, ec);
+  if (ec) refuse(target_, "cannot replace the previous report: " + ec.message());
+  fs::rename(staging_, target_, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::rename(old, target_, ignored);  // put the previous report back
+    refuse(target_, "cannot rename the finished report into place: " + ec.message());
+  }
+  committed_ = true;
+  fs::remove_all(old, ec);
+}
+
+}  // namespace boxpile
