@@ -26,7 +26,10 @@ void collision_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int 
   // A point still apart collides in this step only if it would close its gap within the step;
   // decided once, before any impulse, so that the points of one face landing together all take
   // part even after the first of them has slowed the body.
-  for (SolverContact& c : contacts) c.active = c.n.dot(sb.relative_velocity(c)) < allow_gap(c, 0.0, dt);
+  for (SolverContact& c : contacts) {
+    c.start_un = c.n.dot(sb.relative_velocity(c));
+    c.active = c.start_un < allow_gap(c, 0.0, dt);
+  }
   for (int pass = 0; pass < passes; ++pass) {
     bool any_active = false;
     for (SolverContact& c : contacts) {
@@ -37,7 +40,9 @@ void collision_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int 
       const double e = restitution ? c.restitution : 0.0;
       const Vec3 j = newton_coulomb_impulse(c, u, e, friction, counters);
       sb.apply(c, j, true, true);
-      const double approach = -c.n.dot(u);
+      // Events are judged by the approach before the loop's first impulse: later passes see a
+      // body already turned by its other points' impulses.
+      const double approach = -c.start_un;
       if (approach > event_speed) {
         // One event per pair and step: contacts of a pair are consecutive, so the pair's event,
         // if any, is among those recorded since the loop began.
