@@ -26,17 +26,6 @@ Manifold collide(const OrientedBox& a, const OrientedBox& b, bool reduce = false
   return m;
 }
 
-// Every expected point is matched by one contact (within tol), and the counts agree.
-void require_points(const Manifold& m, const std::vector<Vec3>& expected, double tol) {
-  REQUIRE(m.size() == static_cast<int>(expected.size()));
-  for (const Vec3& e : expected) {
-    double nearest = 1e300;
-    for (const Contact& c : m) nearest = std::min(nearest, (c.position - e).norm());
-    INFO("expected point " << e.transpose());
-    CHECK(nearest < tol);
-  }
-}
-
 void require_normal_and_depth(const Manifold& m, const Vec3& normal, double depth, double tol) {
   for (const Contact& c : m) {
     CHECK((c.normal - normal).norm() < 1e-12);

@@ -21,16 +21,6 @@ Manifold collide(const OrientedBox& a, const HalfSpace& plane, double margin = 0
   return m;
 }
 
-void require_points(const Manifold& m, const std::vector<Vec3>& expected, double tol) {
-  REQUIRE(m.size() == static_cast<int>(expected.size()));
-  for (const Vec3& e : expected) {
-    double nearest = 1e300;
-    for (const Contact& c : m) nearest = std::min(nearest, (c.position - e).norm());
-    INFO("expected point " << e.transpose());
-    CHECK(nearest < tol);
-  }
-}
-
 }  // namespace
 
 TEST_CASE("a box flat on the ground touches at its four bottom corners", "[box_plane]") {

@@ -34,18 +34,6 @@ std::string body_name(const Scene& scene, int index) {
   return index == kGround ? std::string("ground") : scene.bodies[static_cast<std::size_t>(index)].name;
 }
 
-json bodies_json(const std::vector<BodyState>& states) {
-  json bodies = json::array();
-  for (const BodyState& s : states) {
-    bodies.push_back({{"name", s.name},
-                      {"position", to_json(s.position)},
-                      {"orientation", to_json(s.orientation)},
-                      {"velocity", to_json(s.velocity)},
-                      {"angular_velocity", to_json(s.angular_velocity)}});
-  }
-  return bodies;
-}
-
 json diff_json(const ContactDiff& d) {
   return {{"normal_angle", optional_number(d.normal_angle)},
           {"depth_difference", optional_number(d.depth_difference)},

@@ -140,6 +140,20 @@ double hausdorff(const Points& x, const Points& y) {
   return std::max(one_way(x, y), one_way(y, x));
 }
 
+// The manifold has exactly the expected points, each matched by one contact within tol. For use
+// inside Catch2 tests (the file including this must include catch.hpp first).
+#ifdef REQUIRE
+inline void require_points(const Manifold& m, const std::vector<Vec3>& expected, double tol) {
+  REQUIRE(m.size() == static_cast<int>(expected.size()));
+  for (const Vec3& e : expected) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Contact& c : m) nearest = std::min(nearest, (c.position - e).norm());
+    INFO("expected point " << e.transpose());
+    CHECK(nearest < tol);
+  }
+}
+#endif
+
 inline double max_depth(const Manifold& m) {
   double d = -std::numeric_limits<double>::infinity();
   for (const Contact& c : m) d = std::max(d, c.depth);

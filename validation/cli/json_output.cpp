@@ -20,6 +20,18 @@ nlohmann::json to_json(const Contact& c) {
           {"feature", c.feature.value}};
 }
 
+nlohmann::json bodies_json(const std::vector<BodyState>& states) {
+  nlohmann::json bodies = nlohmann::json::array();
+  for (const BodyState& s : states) {
+    bodies.push_back({{"name", s.name},
+                      {"position", to_json(s.position)},
+                      {"orientation", to_json(s.orientation)},
+                      {"velocity", to_json(s.velocity)},
+                      {"angular_velocity", to_json(s.angular_velocity)}});
+  }
+  return bodies;
+}
+
 void write_json_file(const nlohmann::json& doc, const std::string& path) {
   namespace fs = std::filesystem;
   const fs::path target(path);

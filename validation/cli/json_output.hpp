@@ -3,7 +3,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <vector>
+
 #include "sim/collision/contact.hpp"
+#include "sim/engine.hpp"
 #include "sim/math.hpp"
 
 namespace boxpile {
@@ -11,6 +14,9 @@ namespace boxpile {
 nlohmann::json to_json(const Vec3& v);
 nlohmann::json to_json(const Quat& q);  // [w, x, y, z]
 nlohmann::json to_json(const Contact& c);
+// Body states as every output file writes them: name, position, orientation, velocity,
+// angular_velocity.
+nlohmann::json bodies_json(const std::vector<BodyState>& states);
 
 // Writes `doc` to `path` atomically: a temporary file beside it, then a rename, so a failure
 // never leaves a half-written file. Throws std::runtime_error naming the path.

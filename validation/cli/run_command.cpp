@@ -39,18 +39,6 @@ nlohmann::json solver_json(const World& world) {
           {"collision_events", world.events().size()}};
 }
 
-nlohmann::json bodies_json(const std::vector<BodyState>& states) {
-  nlohmann::json bodies = nlohmann::json::array();
-  for (const BodyState& s : states) {
-    bodies.push_back({{"name", s.name},
-                      {"position", to_json(s.position)},
-                      {"orientation", to_json(s.orientation)},
-                      {"velocity", to_json(s.velocity)},
-                      {"angular_velocity", to_json(s.angular_velocity)}});
-  }
-  return bodies;
-}
-
 bool finite_state(const BodyState& s) {
   return s.position.allFinite() && s.orientation.coeffs().allFinite() && s.velocity.allFinite() &&
          s.angular_velocity.allFinite();
