@@ -4,28 +4,7 @@
 
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
-
-function(fail message)
-  message(SEND_ERROR "${message}")
-endfunction()
-
-# run_boxpile(<expected exit code> <args...>): runs boxpile, sets out and err in the caller.
-function(run_boxpile expected)
-  execute_process(COMMAND "${BOXPILE}" ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE stdout
-                  ERROR_VARIABLE stderr)
-  if(NOT code EQUAL expected)
-    fail("boxpile ${ARGN}: exit ${code}, expected ${expected}\nstdout: ${stdout}\nstderr: ${stderr}")
-  endif()
-  set(out "${stdout}" PARENT_SCOPE)
-  set(err "${stderr}" PARENT_SCOPE)
-endfunction()
-
-function(expect_contains text fragment)
-  string(FIND "${text}" "${fragment}" at)
-  if(at EQUAL -1)
-    fail("expected '${fragment}' in:\n${text}")
-  endif()
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake")
 
 function(expect_absent path)
   if(EXISTS "${path}")
