@@ -23,13 +23,13 @@ World::World(const Scene& scene)
   ground_.material = scene.material;
   ground_.update_derived();
   start_v_.resize(bodies_.size());
+  start_omega_.resize(bodies_.size());
   margins_.resize(bodies_.size());
   for (const RigidBody& b : bodies_) {
     double r = 0.0;  // the farthest any box corner lies from the centre of mass
     for (const BoxShape& box : b.shapes) r = std::max(r, box.offset.norm() + box.half_extents.norm());
     bounding_radius_.push_back(r);
   }
-  start_omega_.resize(bodies_.size());
   contacts_.reserve(8 * bodies_.size());
   solver_contacts_.reserve(8 * bodies_.size());
 }

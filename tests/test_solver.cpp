@@ -141,8 +141,11 @@ TEST_CASE("a heavy box on a light one and a pyramid stay up", "[solver]") {
     std::vector<Vec3> start;
     for (const RigidBody& b : w.bodies()) start.push_back(b.x);
     run(w, steps_for(s, 5.0));
-    INFO(name);
-    for (std::size_t i = 0; i < start.size(); ++i) CHECK((w.bodies()[i].x - start[i]).norm() < 1e-3);
+    double worst = 0.0;
+    for (std::size_t i = 0; i < start.size(); ++i) worst = std::max(worst, (w.bodies()[i].x - start[i]).norm());
+    INFO(name << ": largest displacement " << worst << " m");
+    // The stack of 10 holds to 1e-6 m; these hold as well, to the same order.
+    CHECK(worst < 1e-5);
   }
 }
 

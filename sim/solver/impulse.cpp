@@ -33,11 +33,9 @@ Vec3 newton_coulomb_impulse(const SolverContact& c, const Vec3& u, double e, boo
   const double un = c.n.dot(u);
   if (un >= 0.0) return Vec3::Zero();
   ++counters.normal_impulses;
-
-  if (!friction || c.friction <= 0.0) {
-    // Frictionless: j = j_n n with n . K j = -(1 + e) u_n.
-    return (-(1.0 + e) * un / c.n.dot(K * c.n)) * c.n;
-  }
+  // Frictionless: j = j_n n with n . K j = -(1 + e) u_n.
+  auto frictionless = [&] { return Vec3((-(1.0 + e) * un / c.n.dot(K * c.n)) * c.n); };
+  if (!friction || c.friction <= 0.0) return frictionless();
 
   ++counters.friction_evaluations;
   // Sticking impulse: K j = -e u_n n - u.
@@ -55,11 +53,11 @@ Vec3 newton_coulomb_impulse(const SolverContact& c, const Vec3& u, double e, boo
   } else if (jt.norm() > 0.0) {
     t = -jt.normalized();  // friction opposes sliding: the sticking impulse points along -t
   } else {
-    return (-(1.0 + e) * un / c.n.dot(K * c.n)) * c.n;
+    return frictionless();
   }
   const Vec3 dir = c.n - c.friction * t;
   const double denom = c.n.dot(K * dir);
-  if (denom <= 0.0) return (-(1.0 + e) * un / c.n.dot(K * c.n)) * c.n;
+  if (denom <= 0.0) return frictionless();
   return (-(1.0 + e) * un / denom) * dir;
 }
 

@@ -39,8 +39,9 @@ struct SolverContact {
   Mat3 K = Mat3::Zero();
   Mat3 Kinv = Mat3::Zero();
   bool active = true;        // the collision loop drops contacts that separate
-  // Resting phase (contact loop and shock propagation): the normal velocity at the loop's start
-  // and the impulse accumulated over the phase so far.
+  // The normal velocity when the current loop began (the collision loop's events and the
+  // contact loop's restitution ramp read it), and, in the resting phase (contact loop and
+  // shock propagation), the impulse accumulated over the phase so far.
   double start_un = 0.0;
   Vec3 accumulated = Vec3::Zero();
   Vec3 slide_dir = Vec3::Zero();  // unit tangential direction if sliding at the start, else 0
