@@ -55,6 +55,10 @@ std::string style_of(const PlotSeries& s) {
       return "with lines lw 1.2 dt 2 lc rgb '" + color + "'";
     case PlotSeries::Style::Points:
       return "with points pt 7 ps 0.5 lc rgb '" + color + "'";
+    case PlotSeries::Style::Crosses:
+      return "with points pt 2 ps 0.9 lc rgb '" + color + "'";
+    case PlotSeries::Style::LinePoints:
+      return "with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '" + color + "'";
     case PlotSeries::Style::Line:
       break;
   }
@@ -76,8 +80,9 @@ void write_plot_files(const fs::path& dir, const PlotSpec& spec) {
     blocks.push_back(k);
     const std::size_t n = std::min(s.x.size(), s.y.size());
     for (std::size_t i = 0; i < n; ++i) {
+      const double x = spec.log_x && std::isfinite(s.x[i]) ? std::max(s.x[i], spec.log_floor) : s.x[i];
       const double y = spec.log_y && std::isfinite(s.y[i]) ? std::max(s.y[i], spec.log_floor) : s.y[i];
-      data << number(s.x[i]) << ' ' << number(y) << '\n';
+      data << number(x) << ' ' << number(y) << '\n';
     }
   }
   write_text(dir / (spec.name + ".dat"), data.str());
@@ -92,6 +97,7 @@ void write_plot_files(const fs::path& dir, const PlotSpec& spec) {
      << "set grid lc rgb '#dddddd'\n"
      << "set key outside right top noenhanced\n"
      << "set datafile missing 'NaN'\n";
+  if (spec.log_x) gp << "set logscale x\nset format x '10^{%L}'\n";
   if (spec.log_y) gp << "set logscale y\nset format y '10^{%L}'\n";
   std::vector<std::string> parts;
   for (std::size_t b = 0; b < blocks.size(); ++b) {

@@ -12,7 +12,7 @@
 namespace boxpile {
 
 struct PlotSeries {
-  enum class Style { Line, Dashed, Points };
+  enum class Style { Line, Dashed, Points, Crosses, LinePoints };
   std::string title;
   std::vector<double> x, y;
   Style style = Style::Line;
@@ -28,6 +28,7 @@ struct PlotSpec {
   std::optional<double> hline;  // a dotted horizontal line (a threshold)
   std::string hline_title;
   std::vector<PlotSeries> series;
+  bool log_x = false;  // values below log_floor are drawn at it, as on y
 };
 
 class PlotError : public std::runtime_error {

@@ -57,4 +57,19 @@ int run_compare_command(const CompareOptions& options);
 // The scene and report directory of `boxpile` with no command.
 CompareOptions default_compare_options();
 
+// `boxpile sweep GRID.json [--report DIR] [--shard I/N] [--jobs J]`: every cell of a grid (scenes,
+// time steps, engines and their settings), cost against error, Pareto fronts; writes a report
+// directory (sweep.json, sweep.csv, sweep.md, SVG plots). `boxpile sweep-merge DIR... --report OUT`
+// merges the reports of shards. docs/sweeps.md.
+struct SweepOptions {
+  std::string grid;
+  std::string report = "boxpile-sweep";
+  std::string shard = "1/1";
+  int jobs = 1;
+  std::vector<std::string> merge_inputs;  // sweep-merge: shard report directories
+};
+void add_sweep_command(CLI::App& app, SweepOptions& options);
+int run_sweep_command(const SweepOptions& options);
+int run_sweep_merge_command(const SweepOptions& options);
+
 }  // namespace boxpile::cli

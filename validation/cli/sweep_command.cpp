@@ -1,0 +1,172 @@
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <set>
+
+#include "sim/io/input_error.hpp"
+#include "validation/cli/commands.hpp"
+#include "validation/cli/interrupt.hpp"
+#include "validation/report_directory.hpp"
+#include "validation/sweep_report.hpp"
+#include "validation/sweep_runner.hpp"
+
+namespace boxpile::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The file that marks a directory as a sweep report (and so safe to replace).
+constexpr const char* kSweepMarker = "sweep.json";
+
+std::string format(double x, const char* fmt) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, x);
+  return buf;
+}
+
+std::string duration_text(double seconds) {
+  if (seconds < 120.0) return format(seconds, "%.0f s");
+  return format(seconds / 60.0, "%.1f min");
+}
+
+// One line per finished cell on stderr, with the time left estimated from the cells so far.
+void print_progress(const SweepProgress& p) {
+  if (interrupted()) throw Interrupted{};
+  if (p.done == 0) return;
+  const double left = p.elapsed / p.done * (p.total - p.done);
+  std::string line = "  [" + std::to_string(p.done) + "/" + std::to_string(p.total) + "] " + duration_text(p.elapsed) +
+                     " elapsed, about " + duration_text(left) + " left";
+  if (p.last) {
+    line += ": " + p.last->scene + " " + p.last->spec.engine + " " + settings_label(p.last->spec.settings) +
+            " dt=" + format(p.last->spec.dt, "%.4g") + ": " + format(p.last->us_per_simulated_second, "%.4g") +
+            " µs/sim s" + (p.last->measures.passed ? "" : " (fails a check)");
+  }
+  std::cerr << line << '\n';
+}
+
+int finish(const SweepReport& report, ReportDirectory& dir) {
+  std::vector<std::string> warnings;
+  write_sweep_report(report, dir.staging(), warnings);
+  dir.commit();
+  for (const std::string& w : warnings) std::cerr << "boxpile: warning: " << w << '\n';
+  int failing = 0;
+  for (const CellResult& c : report.cells) failing += c.measures.passed ? 0 : 1;
+  std::cout << report.cells.size() << " cells, " << failing << " failing a check\n"
+            << "report: " << (fs::absolute(dir.target()) / "sweep.md").lexically_normal().string() << '\n';
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app, SweepOptions& options) {
+  CLI::App* cmd = app.add_subcommand("sweep", "Run every cell of a grid of engines and settings: cost against error, "
+                                              "Pareto fronts (sweep.json, sweep.csv, sweep.md, SVG plots)");
+  cmd->add_option("grid", options.grid, "Grid file (JSON, docs/sweeps.md)")->required();
+  cmd->add_option("--report", options.report,
+                  "Report directory, replaced as a whole when the report is complete (an existing one must be "
+                  "empty or hold a previous sweep report)")
+      ->capture_default_str();
+  cmd->add_option("--shard", options.shard, "Run shard I of N (I/N, 1-based): cells whose position k has k mod N = I-1")
+      ->capture_default_str();
+  cmd->add_option("--jobs", options.jobs, "Run cells in J parallel processes (their timings then ran side by side)")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+
+  CLI::App* merge = app.add_subcommand("sweep-merge", "Merge the reports of a sweep's shards into one report");
+  merge->add_option("reports", options.merge_inputs, "Shard report directories (each holding sweep.json)")
+      ->required();
+  merge->add_option("--report", options.report, "Merged report directory")->capture_default_str();
+}
+
+int run_sweep_command(const SweepOptions& options) {
+  Shard shard;
+  try {
+    shard = parse_shard(options.shard);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("command line", "--shard", e.what());
+  }
+  // Everything is checked before any cell runs: the grid, its scenes, engines and settings, the
+  // report directory.
+  const SweepGrid grid = load_grid(options.grid);
+  ReportDirectory dir(options.report, kSweepMarker);
+  const std::vector<CellSpec> all = grid_cells(grid);
+  std::vector<CellSpec> cells;
+  std::copy_if(all.begin(), all.end(), std::back_inserter(cells), [&](const CellSpec& c) { return in_shard(c, shard); });
+
+  SweepReport report;
+  report.grid_file = options.grid;
+  report.grid = grid.document;
+  report.grid_cells = static_cast<int>(all.size());
+  const std::string shard_text = std::to_string(shard.index) + "/" + std::to_string(shard.count);
+  report.shards = {shard_text};
+  nlohmann::json machine = describe_machine();
+  machine["shard"] = shard_text;
+  machine["jobs"] = options.jobs;
+  report.machines = {machine};
+  if (options.jobs > 1) {
+    report.notes.push_back("cells ran side by side in " + std::to_string(options.jobs) +
+                           " processes: their timings include that competition (shard " + shard_text + ")");
+  }
+
+  std::cerr << "boxpile sweep: " << options.grid << ": " << cells.size() << " cells";
+  if (shard.count > 1) std::cerr << " (shard " << shard_text << " of " << all.size() << ")";
+  std::cerr << ", " << grid.repetitions << " timed runs each" << (options.jobs > 1 ? ", " + std::to_string(options.jobs) + " processes" : "")
+            << '\n';
+  SweepRunOptions run;
+  run.jobs = options.jobs;
+  run.work_dir = dir.staging() / "cells";
+  run.progress = print_progress;
+  try {
+    const InterruptGuard guard;
+    report.cells = run_sweep_cells(grid, cells, run);
+  } catch (const Interrupted&) {
+    std::cerr << "boxpile: interrupted: no report written\n";
+    return kExitInterrupted;
+  }
+  return finish(report, dir);
+}
+
+int run_sweep_merge_command(const SweepOptions& options) {
+  std::vector<SweepReport> parts;
+  for (const std::string& in : options.merge_inputs) {
+    const fs::path file = fs::path(in) / kSweepMarker;
+    if (!fs::is_regular_file(file)) throw InputError(in, "", "no sweep.json here: not a sweep report");
+    parts.push_back(read_sweep_json(file.string()));
+  }
+  ReportDirectory dir(options.report, kSweepMarker);
+  SweepReport merged;
+  merged.grid_file = parts.front().grid_file;
+  merged.grid = parts.front().grid;
+  merged.grid_cells = parts.front().grid_cells;
+  std::map<int, std::string> owner;  // cell index -> the report that holds it
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const SweepReport& p = parts[k];
+    const std::string& name = options.merge_inputs[k];
+    if (p.grid != merged.grid || p.grid_cells != merged.grid_cells) {
+      throw InputError(name + "/sweep.json", "grid", "a different grid from " + options.merge_inputs[0] + "'s: shards of one sweep only");
+    }
+    for (const CellResult& c : p.cells) {
+      if (const auto it = owner.find(c.spec.index); it != owner.end()) {
+        throw InputError(name + "/sweep.json", "cells", "cell " + std::to_string(c.spec.index) + " is also in " + it->second);
+      }
+      owner[c.spec.index] = name;
+      merged.cells.push_back(c);
+    }
+    merged.shards.insert(merged.shards.end(), p.shards.begin(), p.shards.end());
+    merged.machines.insert(merged.machines.end(), p.machines.begin(), p.machines.end());
+    merged.notes.insert(merged.notes.end(), p.notes.begin(), p.notes.end());
+  }
+  if (static_cast<int>(merged.cells.size()) != merged.grid_cells) {
+    std::cerr << "boxpile: warning: the merged reports hold " << merged.cells.size() << " of the grid's "
+              << merged.grid_cells << " cells (a shard is missing)\n";
+  }
+  std::sort(merged.cells.begin(), merged.cells.end(),
+            [](const CellResult& a, const CellResult& b) { return a.spec.index < b.spec.index; });
+  return finish(merged, dir);
+}
+
+}  // namespace boxpile::cli

@@ -1,0 +1,186 @@
+#include "validation/engine_settings.hpp"
+
+#include <array>
+#include <limits>
+#include <vector>
+
+#include "sim/solver/loops.hpp"
+#include "validation/engine_factory.hpp"
+
+namespace boxpile {
+namespace {
+
+using json_input::JsonNode;
+using Kind = EngineSetting::Kind;
+using nlohmann::json;
+
+// Iteration counts of the reference engines: far above any useful value, low enough that a typo
+// (1e9) is refused instead of running for hours.
+constexpr double kMaxReferenceIterations = 100000;
+// Largest distance or speed a setting may name: none of them has a meaningful value beyond.
+constexpr double kMaxLength = 1e3;  // m (or m/s)
+
+constexpr std::array<std::string_view, 2> kIntegrators = {"explicit_euler", "semi_implicit_euler"};
+constexpr std::array<std::string_view, 2> kOdeSteppers = {"quickstep", "world"};
+
+// Our impulse method (the scene's `solver` and `collision` keys, docs/scene-format.md).
+const std::array kImpulseSettings = {
+    EngineSetting{"collision_passes", Kind::Integer, "", "passes of the collision loop", 1, kMaxSolverPasses, {},
+                  [](EngineConfig& c, const json& v) { c.scene.solver.collision_passes = v.get<int>(); }},
+    EngineSetting{"contact_passes", Kind::Integer, "", "passes of the contact loop (restitution ramped to 0)", 1,
+                  kMaxSolverPasses, {},
+                  [](EngineConfig& c, const json& v) { c.scene.solver.contact_passes = v.get<int>(); }},
+    EngineSetting{"shock_propagation", Kind::Boolean, "", "shock propagation after the contact loop", 0, 0, {},
+                  [](EngineConfig& c, const json& v) { c.scene.solver.shock_propagation = v.get<bool>(); }},
+    EngineSetting{"shock_passes", Kind::Integer, "", "most passes over one level in shock propagation", 1,
+                  kMaxSolverPasses, {},
+                  [](EngineConfig& c, const json& v) { c.scene.solver.shock_passes = v.get<int>(); }},
+    EngineSetting{"recovery_passes", Kind::Integer, "", "passes of penetration recovery (split impulses)", 1,
+                  kMaxSolverPasses, {},
+                  [](EngineConfig& c, const json& v) { c.scene.solver.recovery_passes = v.get<int>(); }},
+    EngineSetting{"penetration_recovery", Kind::Number, "1/step",
+                  "fraction of a penetration pushed out per step (0: off)", 0, 1, {},
+                  [](EngineConfig& c, const json& v) { c.scene.solver.penetration_recovery = v.get<double>(); }},
+    EngineSetting{"penetration_slop", Kind::Number, "m", "overlaps this shallow are left alone", 0, kMaxLength, {},
+                  [](EngineConfig& c, const json& v) { c.scene.solver.penetration_slop = v.get<double>(); }},
+    EngineSetting{"contact_margin", Kind::Number, "m", "points this far apart stay in the step's contact set", 0,
+                  kMaxLength, {},
+                  [](EngineConfig& c, const json& v) { c.scene.solver.contact_margin = v.get<double>(); }},
+    EngineSetting{"integrator", Kind::Choice, "", "position update", 0, 0, kIntegrators,
+                  [](EngineConfig& c, const json& v) {
+                    c.scene.solver.integrator = v.get<std::string>() == "explicit_euler"
+                                                    ? PositionIntegrator::ExplicitEuler
+                                                    : PositionIntegrator::SemiImplicitEuler;
+                  }},
+    EngineSetting{"reduce_to_four", Kind::Boolean, "", "reduce each box-box manifold to at most 4 points", 0, 0,
+                  {}, [](EngineConfig& c, const json& v) { c.scene.collision.reduce_to_four = v.get<bool>(); }},
+};
+
+// The restitution threshold is one setting of both references.
+const EngineSetting kRestitutionThreshold{
+    "restitution_threshold", Kind::Number, "m/s", "approach speeds below this do not bounce", 0, kMaxLength, {},
+    [](EngineConfig& c, const json& v) { c.reference.restitution_threshold = v.get<double>(); }};
+
+// ODE 0.16 (reference/settings.hpp says how each maps onto ODE's calls).
+const std::array kOdeSettings = {
+    EngineSetting{"stepper", Kind::Choice, "", "dWorldQuickStep (iterative) or dWorldStep (Dantzig LCP)", 0, 0,
+                  kOdeSteppers,
+                  [](EngineConfig& c, const json& v) {
+                    c.reference.ode_method =
+                        v.get<std::string>() == "world" ? OdeStepMethod::Step : OdeStepMethod::QuickStep;
+                  }},
+    EngineSetting{"iterations", Kind::Integer, "", "QuickStep passes per step (dWorldStep ignores it)", 1,
+                  kMaxReferenceIterations, {},
+                  [](EngineConfig& c, const json& v) { c.reference.ode_quickstep_iterations = v.get<int>(); }},
+    EngineSetting{"sor", Kind::Number, "", "QuickStep over-relaxation w", 0.01, 2, {},
+                  [](EngineConfig& c, const json& v) { c.reference.ode_quickstep_sor = v.get<double>(); }},
+    EngineSetting{"erp", Kind::Number, "1/step", "error reduction: fraction of joint and contact error removed per step",
+                  0, 1, {}, [](EngineConfig& c, const json& v) { c.reference.ode_erp = v.get<double>(); }},
+    EngineSetting{"cfm", Kind::Number, "(m/s)/N", "constraint force mixing: softness added to every constraint", 0,
+                  1, {}, [](EngineConfig& c, const json& v) { c.reference.ode_cfm = v.get<double>(); }},
+    EngineSetting{"max_contacts", Kind::Integer, "", "points per geom pair asked of dCollide", 1, 8, {},
+                  [](EngineConfig& c, const json& v) { c.reference.ode_max_contacts = v.get<int>(); }},
+    EngineSetting{"surface_layer", Kind::Number, "m", "penetration allowed before ERP corrects it", 0, kMaxLength,
+                  {}, [](EngineConfig& c, const json& v) { c.reference.ode_surface_layer = v.get<double>(); }},
+    EngineSetting{"max_correcting_velocity", Kind::Number, "m/s", "largest velocity ERP may give a contact", 0,
+                  kMaxLength, {},
+                  [](EngineConfig& c, const json& v) { c.reference.ode_max_correcting_velocity = v.get<double>(); }},
+    EngineSetting{"wire_carriage_mass_fraction", Kind::Number, "", "the wire carriage's mass over the body's", 1e-6,
+                  1, {},
+                  [](EngineConfig& c, const json& v) {
+                    c.reference.ode_wire_carriage_mass_fraction = v.get<double>();
+                  }},
+    kRestitutionThreshold,
+};
+
+// Bullet 3.24 (btContactSolverInfo and the collision configuration).
+const std::array kBulletSettings = {
+    EngineSetting{"iterations", Kind::Integer, "", "sequential-impulse passes per step", 1, kMaxReferenceIterations,
+                  {}, [](EngineConfig& c, const json& v) { c.reference.bullet_iterations = v.get<int>(); }},
+    EngineSetting{"split_impulse", Kind::Boolean, "", "push deep contacts apart by pseudo-velocities", 0, 0, {},
+                  [](EngineConfig& c, const json& v) { c.reference.bullet_split_impulse = v.get<bool>(); }},
+    EngineSetting{"split_impulse_threshold", Kind::Number, "m",
+                  "contacts deeper than this (a negative distance) get split impulses", -kMaxLength, 0, {},
+                  [](EngineConfig& c, const json& v) {
+                    c.reference.bullet_split_impulse_threshold = v.get<double>();
+                  }},
+    EngineSetting{"erp", Kind::Number, "1/step", "Baumgarte error reduction inside the contact impulse", 0, 1, {},
+                  [](EngineConfig& c, const json& v) { c.reference.bullet_erp = v.get<double>(); }},
+    EngineSetting{"split_erp", Kind::Number, "1/step", "error reduction of the split impulse", 0, 1, {},
+                  [](EngineConfig& c, const json& v) { c.reference.bullet_split_erp = v.get<double>(); }},
+    EngineSetting{"cfm", Kind::Number, "1/kg", "constraint force mixing added to each contact's inverse mass", 0, 1,
+                  {}, [](EngineConfig& c, const json& v) { c.reference.bullet_cfm = v.get<double>(); }},
+    EngineSetting{"plane_iterations", Kind::Integer, "",
+                  "box-plane perturbation iterations that fill the manifold at once (0: one point per step)", 0,
+                  kMaxSolverPasses, {},
+                  [](EngineConfig& c, const json& v) { c.reference.bullet_plane_iterations = v.get<int>(); }},
+    EngineSetting{"plane_min_points", Kind::Integer, "", "perturb only while the manifold has fewer points", 0, 8,
+                  {}, [](EngineConfig& c, const json& v) { c.reference.bullet_plane_min_points = v.get<int>(); }},
+    kRestitutionThreshold,
+};
+
+std::string format_range(const EngineSetting& s) {
+  return "[" + json_input::format_number(s.min) + ", " + json_input::format_number(s.max) + "]";
+}
+
+}  // namespace
+
+std::span<const EngineSetting> engine_settings(std::string_view engine) {
+  check_engine_name(engine);
+  if (engine == "ode") return kOdeSettings;
+  if (engine == "bullet") return kBulletSettings;
+  if (engine == "own" || engine == "own-impulse") return kImpulseSettings;
+  return {};
+}
+
+const EngineSetting& find_setting(std::string_view engine, std::string_view key, const JsonNode& node) {
+  const std::span<const EngineSetting> settings = engine_settings(engine);
+  std::vector<std::string_view> names;
+  for (const EngineSetting& s : settings) {
+    if (s.key == key) return s;
+    names.push_back(s.key);
+  }
+  std::string what = "engine " + json_input::in_quotes(engine) + " has no setting " + json_input::in_quotes(key);
+  if (const auto close = json_input::closest_match(key, names)) what += "; did you mean " + json_input::in_quotes(*close) + "?";
+  std::string all;
+  for (std::string_view n : names) all += (all.empty() ? "" : ", ") + std::string(n);
+  what += all.empty() ? " (it has none)" : " (its settings: " + all + ")";
+  node.fail(what);
+}
+
+void check_setting_value(const EngineSetting& setting, const JsonNode& value) {
+  switch (setting.kind) {
+    case Kind::Integer: {
+      const int n = value.integer();
+      if (n < setting.min || n > setting.max) {
+        value.fail(std::string(setting.key) + " must be in " + format_range(setting) + ", got " + std::to_string(n));
+      }
+      return;
+    }
+    case Kind::Number: {
+      const double x = value.number();
+      if (x < setting.min || x > setting.max) {
+        value.fail(std::string(setting.key) + " must be in " + format_range(setting) + ", got " +
+                   json_input::format_number(x));
+      }
+      return;
+    }
+    case Kind::Boolean:
+      value.boolean();
+      return;
+    case Kind::Choice:
+      value.choice(setting.choices, setting.key);
+      return;
+  }
+}
+
+void apply_settings(std::string_view engine, const nlohmann::json& settings, EngineConfig& config) {
+  const JsonNode root(settings, "settings");
+  for (const auto& [key, value] : settings.items()) {
+    const EngineSetting& s = find_setting(engine, key, root);
+    // Integers written as 5.0 are read as 5 (as the scene loader does).
+    s.apply(config, s.kind == Kind::Integer ? json(root.at(key).integer()) : value);
+  }
+}
+
+}  // namespace boxpile

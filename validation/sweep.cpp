@@ -1,0 +1,201 @@
+#include "validation/sweep.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <thread>
+
+#include "sim/world.hpp"
+#include "validation/compare.hpp"
+#include "validation/engine_factory.hpp"
+#include "validation/engine_settings.hpp"
+
+namespace boxpile {
+namespace {
+
+// A sweep measures errors at the end and over every step; frames only feed the stacks at the end,
+// so they are recorded sparsely.
+constexpr double kSweepFrameRate = 4.0;  // 1/s
+
+// Sums our solver's per-pass residuals over the steps of a run.
+class ConvergenceMeter {
+ public:
+  explicit ConvergenceMeter(const SolverSettings& s)
+      : collision_(static_cast<std::size_t>(s.collision_passes), 0.0),
+        contact_(static_cast<std::size_t>(s.contact_passes), 0.0) {}
+
+  void add(const StepStats& st) {
+    if (st.collision_passes_used > 0) {
+      accumulate(collision_, st.collision_residual.data(), st.collision_passes_used);
+      ++collision_steps_;
+    }
+    if (st.contact_passes_used > 0) {
+      accumulate(contact_, st.contact_residual.data(), st.contact_passes_used);
+      ++contact_steps_;
+      after_shock_ += st.residual_after_shock;
+      shock_passes_ += st.shock_passes_used;
+    }
+  }
+
+  Convergence mean() const {
+    Convergence c;
+    c.collision = divided(collision_, collision_steps_);
+    c.contact = divided(contact_, contact_steps_);
+    c.after_shock = contact_steps_ > 0 ? after_shock_ / static_cast<double>(contact_steps_) : 0.0;
+    c.shock_passes = contact_steps_ > 0 ? shock_passes_ / static_cast<double>(contact_steps_) : 0.0;
+    return c;
+  }
+
+ private:
+  // Passes after the last one used count with the residual the loop stopped at.
+  static void accumulate(std::vector<double>& sum, const double* residual, int used) {
+    for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += residual[std::min<std::size_t>(k, static_cast<std::size_t>(used) - 1)];
+  }
+  static std::vector<double> divided(std::vector<double> sum, long n) {
+    for (double& x : sum) x = n > 0 ? x / static_cast<double>(n) : 0.0;
+    return sum;
+  }
+
+  std::vector<double> collision_, contact_;
+  long collision_steps_ = 0, contact_steps_ = 0;
+  double after_shock_ = 0.0, shock_passes_ = 0.0;
+};
+
+// Steps the engine through the run, timing the steps alone; feeds our solver's statistics to
+// `meter` when given.
+double timed_run(const EngineConfig& config, const std::string& engine, long steps, ConvergenceMeter* meter) {
+  const std::unique_ptr<Engine> e = make_engine(engine, config.scene, config.reference);
+  const auto* own = dynamic_cast<const World*>(e.get());
+  using Clock = std::chrono::steady_clock;
+  Clock::duration stepping{};
+  for (long k = 0; k < steps; ++k) {
+    const Clock::time_point start = Clock::now();
+    e->step();
+    stepping += Clock::now() - start;
+    if (meter && own) meter->add(own->last_step_stats());
+  }
+  return std::chrono::duration<double>(stepping).count();
+}
+
+std::string first_line_with(const std::string& file, const std::string& prefix) {
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind(prefix, 0) == 0) {
+      const std::size_t colon = line.find(':');
+      return colon == std::string::npos ? line : line.substr(line.find_first_not_of(" \t", colon + 1));
+    }
+  }
+  return "";
+}
+
+nlohmann::json convergence_json(const Convergence& c) {
+  return {{"collision", c.collision}, {"contact", c.contact}, {"after_shock", c.after_shock},
+          {"shock_passes", c.shock_passes}};
+}
+
+}  // namespace
+
+CellResult run_cell(const SweepGrid& grid, const CellSpec& cell) {
+  const GridScene& gs = grid.scenes[static_cast<std::size_t>(cell.scene)];
+  EngineConfig config{gs.scene, {}};
+  config.scene.time.dt = cell.dt;
+  apply_settings(cell.engine, cell.settings, config);
+
+  CellResult r;
+  r.spec = cell;
+  r.scene = gs.path;
+  r.steps = std::lround(config.scene.time.duration / cell.dt);
+
+  CompareSettings measured;
+  measured.reference = config.reference;
+  measured.frame_rate = kSweepFrameRate;
+  const EngineRun run = run_engine(config.scene, cell.engine, measured);
+  r.measures = measure_run(config.scene, run);
+
+  double least = run.wall_seconds;
+  r.timed_runs = 1;
+  const bool own_impulse = (cell.engine == "own" || cell.engine == "own-impulse") &&
+                           config.scene.solver.method == ContactSolver::Impulse;
+  ConvergenceMeter meter(config.scene.solver);
+  // Our impulse method's statistics come from one timed run; with a single repetition that run
+  // is added (reading them is outside the timed steps).
+  const int timed = std::max(grid.repetitions - 1, own_impulse ? 1 : 0);
+  for (int k = 0; k < timed; ++k) {
+    const double seconds = timed_run(config, cell.engine, r.steps, own_impulse && k == 0 ? &meter : nullptr);
+    if (k < grid.repetitions - 1) {
+      least = std::min(least, seconds);
+      ++r.timed_runs;
+    }
+  }
+  if (own_impulse) r.convergence = meter.mean();
+  r.us_per_step = r.steps > 0 ? 1e6 * least / static_cast<double>(r.steps) : 0.0;
+  r.us_per_simulated_second = r.us_per_step / cell.dt;
+  return r;
+}
+
+nlohmann::json cell_json(const CellResult& c) {
+  nlohmann::json checks = nlohmann::json::array();
+  for (const CellCheck& k : c.measures.checks) {
+    checks.push_back({{"name", k.name}, {"value", k.value}, {"limit", k.limit}, {"passed", k.passed}});
+  }
+  nlohmann::json j = {{"index", c.spec.index},
+                      {"scene", c.scene},
+                      {"engine", c.spec.engine},
+                      {"settings", c.spec.settings},
+                      {"dt", c.spec.dt},
+                      {"steps", c.steps},
+                      {"timed_runs", c.timed_runs},
+                      {"us_per_step", c.us_per_step},
+                      {"us_per_simulated_second", c.us_per_simulated_second},
+                      {"error", c.measures.error},
+                      {"stable", c.measures.stable},
+                      {"passed", c.measures.passed},
+                      {"checks", checks}};
+  if (c.convergence) j["convergence"] = convergence_json(*c.convergence);
+  return j;
+}
+
+CellResult cell_from_json(const nlohmann::json& j) {
+  CellResult c;
+  c.spec.index = j.at("index").get<int>();
+  c.spec.engine = j.at("engine").get<std::string>();
+  c.spec.settings = j.at("settings");
+  c.spec.dt = j.at("dt").get<double>();
+  c.scene = j.at("scene").get<std::string>();
+  c.steps = j.at("steps").get<long>();
+  c.timed_runs = j.at("timed_runs").get<int>();
+  c.us_per_step = j.at("us_per_step").get<double>();
+  c.us_per_simulated_second = j.at("us_per_simulated_second").get<double>();
+  c.measures.error = j.at("error");
+  c.measures.stable = j.at("stable").get<bool>();
+  c.measures.passed = j.at("passed").get<bool>();
+  for (const nlohmann::json& k : j.at("checks")) {
+    c.measures.checks.push_back({k.at("name").get<std::string>(), k.at("value").is_null() ? std::nan("") : k.at("value").get<double>(),
+                                 k.at("limit").get<double>(), k.at("passed").get<bool>()});
+  }
+  if (j.contains("convergence")) {
+    const nlohmann::json& v = j.at("convergence");
+    c.convergence = Convergence{v.at("collision").get<std::vector<double>>(), v.at("contact").get<std::vector<double>>(),
+                                v.at("after_shock").get<double>(), v.at("shock_passes").get<double>()};
+  }
+  return c;
+}
+
+nlohmann::json describe_machine() {
+  char host[256] = {};
+  gethostname(host, sizeof host - 1);
+  double load[3] = {0, 0, 0};
+  std::ifstream loadavg("/proc/loadavg");
+  loadavg >> load[0] >> load[1] >> load[2];
+  return {{"cpu", first_line_with("/proc/cpuinfo", "model name")},
+          {"cores", std::thread::hardware_concurrency()},
+          {"host", host},
+          {"load_average", {load[0], load[1], load[2]}}};
+}
+
+}  // namespace boxpile
