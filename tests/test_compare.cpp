@@ -20,38 +20,14 @@
 #include "validation/report_directory.hpp"
 #include "validation/stacks.hpp"
 #include "validation/wire_check.hpp"
+#include "tests/support/work_dir.hpp"
 
 using namespace boxpile;
+using namespace boxpile::test;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
-
-Scene fixture(const std::string& name) {
-  return load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + name + ".json");
-}
-
-// A fresh directory under the build tree for one test.
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(BOXPILE_TEST_WORK) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string read(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream all;
-  all << in.rdbuf();
-  return all.str();
-}
-
-// Runs the boxpile executable; returns its exit code.
-int run_boxpile(const std::string& args) {
-  const std::string command = std::string(BOXPILE_EXE) + " " + args + " > /dev/null 2>&1";
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 // Every key the issue fixes for other tools, present with the right type.
 void check_report_keys(const json& r, const std::vector<std::string>& engines) {

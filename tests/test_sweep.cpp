@@ -1,0 +1,253 @@
+// `boxpile sweep`: grids are checked before anything runs, every cell comes back with cost and
+// error, more solver iterations do not make ODE's or Bullet's settled stacks worse, Pareto fronts
+// are right on a hand-made set, and shards merged equal the whole sweep.
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/io/input_error.hpp"
+#include "validation/pareto.hpp"
+#include "validation/sweep_grid.hpp"
+#include "validation/sweep_report.hpp"
+#include "validation/sweep_runner.hpp"
+#include "tests/support/work_dir.hpp"
+
+using namespace boxpile;
+using namespace boxpile::test;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string scene_path(const std::string& name) { return std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + name + ".json"; }
+
+// A grid file in `dir` with the given engines (and a stack of five, unless `scenes` says else).
+fs::path grid_file(const fs::path& dir, const json& engines, double duration = 0.5,
+                   const json& scenes = json::array({scene_path("stack_5")})) {
+  const json grid = {{"scenes", scenes}, {"duration", duration}, {"repetitions", 1}, {"engines", engines}};
+  const fs::path path = dir / "grid.json";
+  write(path, grid.dump());
+  return path;
+}
+
+// The message of the InputError that loading `engines` raises ("" when it loads).
+std::string grid_error(const fs::path& dir, const json& engines, const json& scenes = json::array({scene_path("stack_5")})) {
+  try {
+    load_grid(grid_file(dir, engines, 0.5, scenes).string());
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const CellResult& cell_with(const std::vector<CellResult>& cells, const std::string& scene, const std::string& engine,
+                            int iterations) {
+  for (const CellResult& c : cells) {
+    if (c.scene == scene && c.spec.engine == engine && c.spec.settings.at("iterations") == iterations) return c;
+  }
+  FAIL("no cell " << scene << " " << engine << " " << iterations);
+  return cells.front();
+}
+
+}  // namespace
+
+TEST_CASE("A grid's cells are the product of each engine's settings, in one fixed order", "[sweep]") {
+  const fs::path dir = scratch("sweep_grid");
+  const json engines = {{"own", {{"contact_passes", {2, 5, 10}}, {"shock_passes", {5, 20}}}},
+                        {"ode", {{"iterations", {5, 20}}, {"stepper", {"quickstep", "world"}}, {"erp", {0.2}}}},
+                        {"bullet", json::object()}};
+  const json grid = {{"scenes", {scene_path("stack_5"), "../../../fixtures/scenes/box_at_rest.json"}},
+                     {"dt", {1.0 / 60.0, 1.0 / 240.0}}, {"engines", engines}};
+  write(dir / "grid.json", grid.dump());
+  // Scene paths are relative to the grid file; this one is not there.
+  REQUIRE_THROWS_AS(load_grid((dir / "grid.json").string()), InputError);
+
+  const json found = {{"scenes", {scene_path("stack_5"), scene_path("box_at_rest")}},
+                      {"dt", {1.0 / 60.0, 1.0 / 240.0}}, {"duration", 0.25}, {"engines", engines}};
+  write(dir / "grid.json", found.dump());
+  const SweepGrid g = load_grid((dir / "grid.json").string());
+  CHECK(g.repetitions == 3);
+  REQUIRE(g.scenes.size() == 2);
+  CHECK(g.scenes[1].scene.time.duration == 0.25);
+  const std::vector<CellSpec> cells = grid_cells(g);
+  // Per scene and dt: own 3 x 2, ode 2 x 2 x 1, bullet 1 (its defaults).
+  REQUIRE(cells.size() == 2u * 2u * (6u + 4u + 1u));
+  for (std::size_t k = 0; k < cells.size(); ++k) CHECK(cells[k].index == static_cast<int>(k));
+  // Engines by name, the last setting fastest, dt innermost.
+  CHECK(cells[0].engine == "bullet");
+  CHECK(cells[2].engine == "ode");
+  CHECK(cells[2].settings == json({{"erp", 0.2}, {"iterations", 5}, {"stepper", "quickstep"}}));
+  CHECK(cells[3].dt == 1.0 / 240.0);
+  CHECK(cells[4].settings.at("stepper") == "world");
+  CHECK(cells[10].engine == "own");
+  CHECK(cells[10].settings == json({{"contact_passes", 2}, {"shock_passes", 5}}));
+
+  SECTION("shards split the cells deterministically and cover them once") {
+    const Shard a = parse_shard("1/3"), b = parse_shard("2/3"), c = parse_shard("3/3");
+    for (const CellSpec& cell : cells) {
+      CHECK(in_shard(cell, a) + in_shard(cell, b) + in_shard(cell, c) == 1);
+      CHECK(in_shard(cell, b) == (cell.index % 3 == 1));
+    }
+    CHECK_THROWS_AS(parse_shard("0/3"), std::invalid_argument);
+    CHECK_THROWS_AS(parse_shard("4/3"), std::invalid_argument);
+    CHECK_THROWS_AS(parse_shard("1-3"), std::invalid_argument);
+    CHECK_THROWS_AS(parse_shard("1/3x"), std::invalid_argument);
+  }
+}
+
+TEST_CASE("Grid errors name the key before anything runs", "[sweep]") {
+  const fs::path dir = scratch("sweep_grid_errors");
+  using Catch::Matchers::Contains;
+  CHECK_THAT(grid_error(dir, {{"physx", json::object()}}), Contains("engines.physx") && Contains("unknown engine"));
+  CHECK_THAT(grid_error(dir, {{"ode", {{"iteratons", {5}}}}}),
+             Contains("engines.ode.iteratons") && Contains("did you mean \"iterations\""));
+  CHECK_THAT(grid_error(dir, {{"ode", {{"iterations", {5, 0}}}}}), Contains("engines.ode.iterations[1]"));
+  CHECK_THAT(grid_error(dir, {{"ode", {{"erp", {1.5}}}}}), Contains("engines.ode.erp[0]") && Contains("[0, 1]"));
+  CHECK_THAT(grid_error(dir, {{"ode", {{"stepper", {"dantzig"}}}}}), Contains("engines.ode.stepper[0]"));
+  CHECK_THAT(grid_error(dir, {{"bullet", {{"split_impulse", {1}}}}}), Contains("engines.bullet.split_impulse[0]"));
+  CHECK_THAT(grid_error(dir, {{"bullet", {{"iterations", json::array()}}}}), Contains("at least one value"));
+  CHECK_THAT(grid_error(dir, {{"own", {{"contact_passes", 5}}}}), Contains("engines.own.contact_passes"));
+  CHECK_THAT(grid_error(dir, {{"own", json::object()}}, json::array({"no_such_scene.json"})),
+             Contains("scenes[0]") && Contains("no scene file"));
+  CHECK_THAT(grid_error(dir, json::object()), Contains("engines"));
+
+  json extra = {{"scenes", {scene_path("stack_5")}}, {"engines", {{"own", json::object()}}}, {"step", {0.01}}};
+  write(dir / "extra.json", extra.dump());
+  CHECK_THROWS_WITH(load_grid((dir / "extra.json").string()), Contains("\"step\""));
+  CHECK(grid_error(dir, {{"own", {{"integrator", {"explicit_euler", "semi_implicit_euler"}}}},
+                         {"bullet", {{"split_impulse", {true, false}}, {"cfm", {0.0}}}}}) == "");
+
+  // From the command line: exit 2 and no report directory.
+  write(dir / "bad.json", json({{"scenes", {scene_path("stack_5")}}, {"engines", {{"ode", {{"iteratons", {5}}}}}}}).dump());
+  CHECK(run_boxpile("sweep " + (dir / "bad.json").string() + " --report " + (dir / "report").string()) == 2);
+  CHECK(!fs::exists(dir / "report"));
+  CHECK(run_boxpile("sweep " + grid_file(dir, {{"own", json::object()}}).string() + " --shard 3/2 --report " +
+                    (dir / "report").string()) == 2);
+  CHECK(!fs::exists(dir / "report"));
+}
+
+TEST_CASE("A small sweep returns every cell with its cost and error", "[sweep]") {
+  const fs::path dir = scratch("sweep_small");
+  const json engines = {{"own", {{"contact_passes", {2, 10}}}}, {"ode", {{"iterations", {10}}}},
+                        {"bullet", {{"iterations", {10}}}}};
+  const SweepGrid g = load_grid(grid_file(dir, engines, 0.5).string());
+  const std::vector<CellSpec> cells = grid_cells(g);
+  SweepRunOptions options;
+  options.jobs = 2;
+  options.work_dir = dir / "cells";
+  const std::vector<CellResult> results = run_sweep_cells(g, cells, options);
+  REQUIRE(results.size() == 4);
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const CellResult& c = results[k];
+    INFO(c.spec.engine << " " << c.spec.settings.dump());
+    CHECK(c.spec.index == static_cast<int>(k));
+    CHECK(c.steps == 120);  // 0.5 s at the scene's 1/240 s
+    CHECK(c.us_per_step > 0.0);
+    CHECK(c.us_per_simulated_second == Approx(c.us_per_step / c.spec.dt).epsilon(1e-12));
+    for (const ErrorMeasure& m : kErrorMeasures) CHECK(c.measures.error.at(std::string(m.name)).is_number());
+    // A stack of five at rest: every engine keeps it within 1 mm for half a second, never rising.
+    CHECK(c.measures.error.at("stack_height").get<double>() < 1e-3);
+    CHECK(c.measures.error.at("penetration").get<double>() < 1e-3);
+    CHECK(c.measures.stable);
+    CHECK(c.convergence.has_value() == (c.spec.engine == "own"));
+  }
+  // Our method's convergence: one mean residual per pass of each loop.
+  CHECK(results[2].convergence->contact.size() == 2);
+  CHECK(results[3].convergence->contact.size() == 10);
+  CHECK(results[3].convergence->collision.size() == 5);
+  CHECK(!fs::exists(dir / "cells"));  // the workers' files are gone
+}
+
+TEST_CASE("More iterations never make ODE's or Bullet's settled stack error worse beyond a factor", "[sweep]") {
+  // Measured (2 s): the error falls with iterations except ODE on stack_5 from 5 to 10 (x1.08).
+  constexpr double kFactor = 1.5;
+  // Below this the error is rounding and contact jitter, not convergence.
+  constexpr double kFloor = 1e-6;  // m
+  const fs::path dir = scratch("sweep_iterations");
+  const std::vector<int> iterations = {5, 10, 20, 50};
+  const json engines = {{"ode", {{"iterations", iterations}}}, {"bullet", {{"iterations", iterations}}}};
+  const SweepGrid g = load_grid(grid_file(dir, engines, 2.0, {scene_path("stack_5"), scene_path("stack_10")}).string());
+  SweepRunOptions options;
+  options.jobs = 2;
+  options.work_dir = dir / "cells";
+  const std::vector<CellResult> results = run_sweep_cells(g, grid_cells(g), options);
+  for (const char* engine : {"ode", "bullet"}) {
+    for (const std::string& scene : {scene_path("stack_5"), scene_path("stack_10")}) {
+      for (std::size_t k = 1; k < iterations.size(); ++k) {
+        const double fewer = cell_with(results, scene, engine, iterations[k - 1]).measures.error.at("stack_height");
+        const double more = cell_with(results, scene, engine, iterations[k]).measures.error.at("stack_height");
+        INFO(engine << " " << scene << " " << iterations[k - 1] << " -> " << iterations[k] << ": " << fewer << " -> " << more);
+        CHECK(more <= kFactor * std::max(fewer, kFloor));
+      }
+      // And the most iterations beat the fewest.
+      CHECK(cell_with(results, scene, engine, 50).measures.error.at("stack_height").get<double>() <
+            cell_with(results, scene, engine, 5).measures.error.at("stack_height").get<double>());
+    }
+  }
+}
+
+TEST_CASE("Pareto fronts on a hand-made set of cells", "[sweep]") {
+  // cost, error: (1, 10) (2, 5) (2, 7) (3, 5) (4, 1) (5, 1) (6, 0.5) (0.5, inf) (7, 0.5)
+  const std::vector<CostError> points = {{1, 10}, {2, 5}, {2, 7}, {3, 5}, {4, 1}, {5, 1}, {6, 0.5}, {0.5, INFINITY}, {7, 0.5}};
+  CHECK(pareto_front(points) == std::vector<std::size_t>{0, 1, 4, 6});
+  CHECK(pareto_front({}).empty());
+  // Equal points: the first stays.
+  CHECK(pareto_front({{1, 1}, {1, 1}}) == std::vector<std::size_t>{0});
+  // A cheaper, worse point and a dearer, better one are both on it.
+  CHECK(pareto_front({{3, 1}, {1, 3}}) == std::vector<std::size_t>{1, 0});
+
+  // Per engine and over all, through the report: unstable cells stay off.
+  SweepReport r;
+  auto cell = [](const std::string& engine, double cost, double error, bool stable) {
+    CellResult c;
+    c.scene = "s.json";
+    c.spec.engine = engine;
+    c.us_per_simulated_second = cost;
+    c.measures.error = {{"stack_height", error}};
+    c.measures.stable = stable;
+    return c;
+  };
+  r.cells = {cell("a", 1, 1e-2, true), cell("a", 2, 1e-4, true), cell("a", 3, 1e-3, true), cell("b", 1.5, 1e-3, true),
+             cell("b", 0.5, 1e-9, false), cell("b", 4, 1e-6, true)};
+  const SceneFronts f = fronts_of(r, "s.json", "stack_height");
+  CHECK(f.by_engine.at("a") == std::vector<std::size_t>{0, 1});
+  CHECK(f.by_engine.at("b") == std::vector<std::size_t>{3, 5});
+  CHECK(f.overall == std::vector<std::size_t>{0, 3, 1, 5});
+}
+
+TEST_CASE("Shards merged equal the whole sweep in every error figure", "[sweep]") {
+  const fs::path dir = scratch("sweep_shards");
+  const json engines = {{"own", {{"contact_passes", {2, 10}}}}, {"ode", {{"iterations", {5, 20}}}},
+                        {"bullet", {{"iterations", {5}}}}};
+  const std::string grid = grid_file(dir, engines, 0.5).string();
+  REQUIRE(run_boxpile("sweep " + grid + " --report " + (dir / "whole").string()) == 0);
+  REQUIRE(run_boxpile("sweep " + grid + " --shard 1/2 --report " + (dir / "s1").string()) == 0);
+  REQUIRE(run_boxpile("sweep " + grid + " --shard 2/2 --jobs 2 --report " + (dir / "s2").string()) == 0);
+  REQUIRE(run_boxpile("sweep-merge " + (dir / "s2").string() + " " + (dir / "s1").string() + " --report " +
+                      (dir / "merged").string()) == 0);
+  const json whole = json::parse(read(dir / "whole" / "sweep.json"));
+  const json s1 = json::parse(read(dir / "s1" / "sweep.json"));
+  const json merged = json::parse(read(dir / "merged" / "sweep.json"));
+  REQUIRE(whole.at("cells").size() == 5);
+  CHECK(s1.at("cells").size() == 3);  // cells 0, 2, 4
+  REQUIRE(merged.at("cells").size() == 5);
+  for (std::size_t k = 0; k < 5; ++k) {
+    const json& a = whole.at("cells")[k];
+    const json& b = merged.at("cells")[k];
+    INFO("cell " << k);
+    for (const char* key : {"index", "scene", "engine", "settings", "dt", "steps", "error", "stable", "passed", "checks"}) {
+      CHECK(a.at(key) == b.at(key));
+    }
+  }
+  CHECK(merged.at("fronts") == whole.at("fronts"));
+  CHECK(merged.at("shards") == json({"2/2", "1/2"}));
+  CHECK(fs::exists(dir / "merged" / "sweep.md"));
+  CHECK(fs::exists(dir / "merged" / "sweep.csv"));
+  // A shard given twice is refused, with nothing written.
+  CHECK(run_boxpile("sweep-merge " + (dir / "s1").string() + " " + (dir / "s1").string() + " --report " +
+                    (dir / "twice").string()) == 2);
+  CHECK(!fs::exists(dir / "twice"));
+}
