@@ -174,6 +174,40 @@ void check_setting_value(const EngineSetting& setting, const JsonNode& value) {
   }
 }
 
+std::string settings_markdown() {
+  std::string md;
+  for (std::string_view engine : available_engine_names()) {
+    md += "### " + std::string(engine) + "\n\n";
+    const std::span<const EngineSetting> settings = engine_settings(engine);
+    if (settings.empty()) {
+      md += "No settings.\n\n";
+      continue;
+    }
+    md += "| setting | values | unit | what it sets |\n|---|---|---|---|\n";
+    for (const EngineSetting& s : settings) {
+      std::string values;
+      switch (s.kind) {
+        case Kind::Integer:
+          values = "integer in " + format_range(s);
+          break;
+        case Kind::Number:
+          values = "number in " + format_range(s);
+          break;
+        case Kind::Boolean:
+          values = "true, false";
+          break;
+        case Kind::Choice:
+          for (std::string_view c : s.choices) values += (values.empty() ? "" : ", ") + std::string("\"") + std::string(c) + "\"";
+          break;
+      }
+      md += "| `" + std::string(s.key) + "` | " + values + " | " + (s.unit.empty() ? "—" : std::string(s.unit)) + " | " +
+            std::string(s.what) + " |\n";
+    }
+    md += "\n";
+  }
+  return md;
+}
+
 void apply_settings(std::string_view engine, const nlohmann::json& settings, EngineConfig& config) {
   const JsonNode root(settings, "settings");
   for (const auto& [key, value] : settings.items()) {

@@ -49,4 +49,7 @@ void check_setting_value(const EngineSetting& setting, const json_input::JsonNod
 // Applies settings {key: value} (each already checked) to `config`.
 void apply_settings(std::string_view engine, const nlohmann::json& settings, EngineConfig& config);
 
+// Every available engine's settings as Markdown tables (`boxpile settings`, docs/sweeps.md).
+std::string settings_markdown();
+
 }  // namespace boxpile

@@ -129,19 +129,35 @@ void md_scene_measure(std::ostringstream& md, const SweepReport& r, const std::s
   md << " cheapest |\n|---|";
   for (std::size_t k = 0; k < engines.size(); ++k) md << "---|";
   md << "---|\n";
+  // One row per level; consecutive levels with the same cheapest cells share a row.
+  struct Row {
+    double loosest = 0.0, tightest = 0.0;
+    std::vector<std::optional<std::size_t>> per_engine;
+    std::optional<std::size_t> best;
+  };
+  std::vector<Row> rows;
   for (double level : accuracy_levels(r, fronts.overall, measure)) {
-    const std::optional<std::size_t> best = cheapest_at(r, cand, measure, level, "");
-    md << "| " << format(level, "%.0e") << " |";
-    for (const std::string& e : engines) {
-      const std::optional<std::size_t> c = cheapest_at(r, cand, measure, level, e);
+    Row row{level, level, {}, cheapest_at(r, cand, measure, level, "")};
+    for (const std::string& e : engines) row.per_engine.push_back(cheapest_at(r, cand, measure, level, e));
+    if (!rows.empty() && rows.back().per_engine == row.per_engine && rows.back().best == row.best) {
+      rows.back().tightest = level;
+    } else {
+      rows.push_back(row);
+    }
+  }
+  for (const Row& row : rows) {
+    md << "| " << format(row.loosest, "%.0e")
+       << (row.tightest != row.loosest ? " … " + format(row.tightest, "%.0e") : std::string()) << " |";
+    for (std::size_t k = 0; k < engines.size(); ++k) {
+      const std::optional<std::size_t>& c = row.per_engine[k];
       if (!c) {
         md << " — |";
         continue;
       }
       const std::string cost = format(r.cells[*c].us_per_simulated_second, "%.4g");
-      md << ' ' << (best && r.cells[*best].spec.engine == e ? "**" + cost + "**" : cost) << " |";
+      md << ' ' << (row.best && r.cells[*row.best].spec.engine == engines[k] ? "**" + cost + "**" : cost) << " |";
     }
-    md << ' ' << (best ? cell_label(r.cells[*best]) : std::string("none")) << " |\n";
+    md << ' ' << (row.best ? cell_label(r.cells[*row.best]) : std::string("none")) << " |\n";
   }
   md << "\nThe front over all engines (cheapest first):\n\n| µs/sim s | " << m.name << " | cell | checks |\n|---|---|---|---|\n";
   for (std::size_t i : fronts.overall) {

@@ -71,5 +71,7 @@ struct SweepOptions {
 void add_sweep_command(CLI::App& app, SweepOptions& options);
 int run_sweep_command(const SweepOptions& options);
 int run_sweep_merge_command(const SweepOptions& options);
+// `boxpile settings`: every engine's sweepable settings as Markdown tables.
+int run_settings_command();
 
 }  // namespace boxpile::cli

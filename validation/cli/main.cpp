@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("compare")) return run_compare_command(compare);
     if (app.got_subcommand("sweep")) return run_sweep_command(sweep);
     if (app.got_subcommand("sweep-merge")) return run_sweep_merge_command(sweep);
+    if (app.got_subcommand("settings")) return run_settings_command();
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());

@@ -19,7 +19,8 @@ namespace {
 constexpr std::size_t kSummaryBodyLimit = 10;
 
 nlohmann::json metrics_json(const FrameMetrics& m) {
-  return {{"energy", {{"kinetic", m.energy.kinetic()}, {"potential", m.energy.potential}, {"total", m.energy.total()}}},
+  return {{"energy", {{"translational", m.energy.translational}, {"rotational", m.energy.rotational},
+                      {"kinetic", m.energy.kinetic()}, {"potential", m.energy.potential}, {"total", m.energy.total()}}},
           {"max_penetration", m.penetration.depth},
           {"levitation", m.levitation}};
 }

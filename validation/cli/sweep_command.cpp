@@ -10,6 +10,7 @@
 #include "sim/io/input_error.hpp"
 #include "validation/cli/commands.hpp"
 #include "validation/cli/interrupt.hpp"
+#include "validation/engine_settings.hpp"
 #include "validation/report_directory.hpp"
 #include "validation/sweep_report.hpp"
 #include "validation/sweep_runner.hpp"
@@ -76,6 +77,8 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
 
+  app.add_subcommand("settings", "List every setting each engine exposes to a sweep grid, with units (Markdown)");
+
   CLI::App* merge = app.add_subcommand("sweep-merge", "Merge the reports of a sweep's shards into one report");
   merge->add_option("reports", options.merge_inputs, "Shard report directories (each holding sweep.json)")
       ->required();
@@ -128,6 +131,11 @@ int run_sweep_command(const SweepOptions& options) {
     return kExitInterrupted;
   }
   return finish(report, dir);
+}
+
+int run_settings_command() {
+  std::cout << settings_markdown();
+  return kExitOk;
 }
 
 int run_sweep_merge_command(const SweepOptions& options) {
