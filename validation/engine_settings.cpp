@@ -4,7 +4,7 @@
 #include <limits>
 #include <vector>
 
-#include "sim/solver/loops.hpp"
+#include "sim/solver/step_context.hpp"
 #include "validation/engine_factory.hpp"
 
 namespace boxpile {

@@ -26,7 +26,8 @@ class ConvergenceMeter {
  public:
   explicit ConvergenceMeter(const SolverSettings& s)
       : collision_(static_cast<std::size_t>(s.collision_passes), 0.0),
-        contact_(static_cast<std::size_t>(s.contact_passes), 0.0) {}
+        contact_(static_cast<std::size_t>(s.contact_passes), 0.0),
+        shock_(static_cast<std::size_t>(s.shock_passes), 0.0) {}
 
   void add(const StepStats& st) {
     if (st.collision_passes_used > 0) {
@@ -37,6 +38,10 @@ class ConvergenceMeter {
       accumulate(contact_, st.contact_residual.data(), st.contact_passes_used);
       ++contact_steps_;
       after_shock_ += st.residual_after_shock;
+      if (st.shock_pass_count > 0) {
+        accumulate(shock_, st.shock_change.data(), st.shock_pass_count);
+        ++shock_steps_;
+      }
       shock_passes_ += st.shock_passes_used;
     }
   }
@@ -45,6 +50,7 @@ class ConvergenceMeter {
     Convergence c;
     c.collision = divided(collision_, collision_steps_);
     c.contact = divided(contact_, contact_steps_);
+    c.shock = divided(shock_, shock_steps_);
     c.after_shock = contact_steps_ > 0 ? after_shock_ / static_cast<double>(contact_steps_) : 0.0;
     c.shock_passes = contact_steps_ > 0 ? shock_passes_ / static_cast<double>(contact_steps_) : 0.0;
     return c;
@@ -60,8 +66,8 @@ class ConvergenceMeter {
     return sum;
   }
 
-  std::vector<double> collision_, contact_;
-  long collision_steps_ = 0, contact_steps_ = 0;
+  std::vector<double> collision_, contact_, shock_;
+  long collision_steps_ = 0, contact_steps_ = 0, shock_steps_ = 0;
   double after_shock_ = 0.0, shock_passes_ = 0.0;
 };
 
@@ -94,7 +100,7 @@ std::string first_line_with(const std::string& file, const std::string& prefix) 
 }
 
 nlohmann::json convergence_json(const Convergence& c) {
-  return {{"collision", c.collision}, {"contact", c.contact}, {"after_shock", c.after_shock},
+  return {{"collision", c.collision}, {"contact", c.contact}, {"shock", c.shock}, {"after_shock", c.after_shock},
           {"shock_passes", c.shock_passes}};
 }
 
@@ -181,7 +187,8 @@ CellResult cell_from_json(const nlohmann::json& j) {
   if (j.contains("convergence")) {
     const nlohmann::json& v = j.at("convergence");
     c.convergence = Convergence{v.at("collision").get<std::vector<double>>(), v.at("contact").get<std::vector<double>>(),
-                                v.at("after_shock").get<double>(), v.at("shock_passes").get<double>()};
+                                v.at("shock").get<std::vector<double>>(), v.at("after_shock").get<double>(),
+                                v.at("shock_passes").get<double>()};
   }
   return c;
 }

@@ -19,6 +19,9 @@ namespace boxpile {
 struct Convergence {
   std::vector<double> collision;  // per collision-loop pass
   std::vector<double> contact;    // per contact-loop pass
+  // Per shock-propagation pass: the largest velocity change an impulse made in it (over the
+  // levels), m/s: how far the pass still moved the stack.
+  std::vector<double> shock;
   double after_shock = 0.0;       // after shock propagation (mean over the steps)
   double shock_passes = 0.0;      // passes shock propagation used per step, summed over levels (mean)
 };

@@ -88,7 +88,9 @@ PlotSpec front_plot(const SweepReport& r, const std::string& scene, const std::s
 // The cell of our impulse method with the most passes (the first of equals): its convergence.
 const CellResult* convergence_cell(const SweepReport& r, const std::string& scene) {
   const CellResult* best = nullptr;
-  auto passes = [](const CellResult& c) { return c.convergence->collision.size() + c.convergence->contact.size(); };
+  auto passes = [](const CellResult& c) {
+    return c.convergence->collision.size() + c.convergence->contact.size() + c.convergence->shock.size();
+  };
   for (const CellResult& c : r.cells) {
     if (c.scene != scene || !c.convergence) continue;
     if (!best || passes(c) > passes(*best)) best = &c;
@@ -108,6 +110,7 @@ PlotSpec convergence_plot(const CellResult& c, const std::string& stem) {
   };
   spec.series.push_back(series("collision loop", c.convergence->collision, 0));
   spec.series.push_back(series("contact loop", c.convergence->contact, 1));
+  spec.series.push_back(series("shock propagation: largest velocity change in the pass", c.convergence->shock, 2));
   spec.hline = std::max(c.convergence->after_shock, kLogFloor);
   spec.hline_title = "after shock propagation";
   return spec;

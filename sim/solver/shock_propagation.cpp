@@ -106,6 +106,8 @@ void ShockPropagation::run(ImpulseStep& step) {
         largest_change = std::max(largest_change, (c.K * j).norm());
       }
       ++stats.shock_passes_used;
+      stats.shock_change[pass] = std::max(stats.shock_change[pass], largest_change);
+      stats.shock_pass_count = std::max(stats.shock_pass_count, pass + 1);
       if (largest_change < kShockConverged) break;
     }
   }

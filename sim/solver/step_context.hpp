@@ -53,6 +53,10 @@ struct StepStats {
   int contact_passes_used = 0;
   int shock_levels = 0;
   int shock_passes_used = 0;  // summed over the levels
+  // Largest velocity change |K dj| an impulse made in each shock-propagation pass, over the
+  // levels (a level stops once it is below 1e-9 m/s), m/s; shock_pass_count passes are recorded.
+  std::array<double, kMaxSolverPasses> shock_change{};
+  int shock_pass_count = 0;  // the most passes any level used
   double residual_after_shock = 0.0;
 };
 

@@ -1,0 +1,13 @@
+# bone hits the pile: levitation against time: rerun with `gnuplot levitation_bone.gp` in this directory.
+set terminal svg size 900,480 dynamic enhanced font 'Helvetica,13' background '#ffffff'
+set output 'levitation_bone.svg'
+set title 'bone hits the pile: levitation against time' noenhanced
+set xlabel 't (s)' noenhanced
+set ylabel 'levitation (m)' noenhanced
+set grid lc rgb '#dddddd'
+set key outside right top noenhanced
+set logscale y
+set format y '10^{%L}'
+plot 'levitation_bone.dat' index 0 using 1:2 with lines lw 1.5 lc rgb '#0072B2' title 'own', \
+     'levitation_bone.dat' index 1 using 1:2 with lines lw 1.5 lc rgb '#D55E00' title 'ode', \
+     'levitation_bone.dat' index 2 using 1:2 with lines lw 1.5 lc rgb '#009E73' title 'bullet'
