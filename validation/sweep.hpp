@@ -33,7 +33,7 @@ struct CellResult {
   int timed_runs = 0;
   double us_per_step = 0.0;               // the least of the timed runs
   double us_per_simulated_second = 0.0;   // us_per_step / dt
-  RunMeasures measures;
+  CellMeasures measures;
   std::optional<Convergence> convergence;  // our impulse method only
 };
 

@@ -70,8 +70,8 @@ nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::js
 
 }  // namespace
 
-RunMeasures measure_run(const Scene& scene, const EngineRun& run) {
-  RunMeasures m;
+CellMeasures measure_run(const Scene& scene, const EngineRun& run) {
+  CellMeasures m;
   const double rise = run.energy_max - run.energy_initial;
   const double kinetic = final_kinetic(scene, run);
   m.error["stack_height"] = stack_height_error(run);

@@ -37,13 +37,13 @@ struct CellCheck {
   bool passed = false;
 };
 
-struct RunMeasures {
+struct CellMeasures {
   nlohmann::json error = nlohmann::json::object();  // {measure: value or null}
   std::vector<CellCheck> checks;
   bool stable = false;  // finite, and the total energy never rose beyond its limit
   bool passed = false;  // every check passed
 };
 
-RunMeasures measure_run(const Scene& scene, const EngineRun& run);
+CellMeasures measure_run(const Scene& scene, const EngineRun& run);
 
 }  // namespace boxpile

@@ -100,8 +100,7 @@ const CellResult* convergence_cell(const SweepReport& r, const std::string& scen
 
 PlotSpec convergence_plot(const CellResult& c, const std::string& stem) {
   PlotSpec spec = log_plot("convergence_" + stem,
-                           c.scene + ": residual after each pass (" + c.spec.engine + " " +
-                               settings_label(c.spec.settings) + ", mean over the run)",
+                           fs::path(c.scene).filename().string() + ": residual after each pass (mean over the run)",
                            "pass", "largest approaching normal velocity (m/s)", false);
   auto series = [](const std::string& title, const std::vector<double>& y, int color) {
     PlotSeries s{title, {}, y, Style::LinePoints, color};
@@ -110,9 +109,9 @@ PlotSpec convergence_plot(const CellResult& c, const std::string& stem) {
   };
   spec.series.push_back(series("collision loop", c.convergence->collision, 0));
   spec.series.push_back(series("contact loop", c.convergence->contact, 1));
-  spec.series.push_back(series("shock propagation: largest velocity change in the pass", c.convergence->shock, 2));
+  spec.series.push_back(series("shock propagation (largest change)", c.convergence->shock, 2));
   spec.hline = std::max(c.convergence->after_shock, kLogFloor);
-  spec.hline_title = "after shock propagation";
+  spec.hline_title = "after shock";
   return spec;
 }
 
