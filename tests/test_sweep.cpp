@@ -3,12 +3,15 @@
 // are right on a hand-made set, and shards merged equal the whole sweep.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "sim/io/input_error.hpp"
+#include "validation/engine_factory.hpp"
+#include "validation/engine_settings.hpp"
 #include "validation/pareto.hpp"
 #include "validation/sweep_grid.hpp"
 #include "validation/sweep_report.hpp"
@@ -258,4 +261,54 @@ TEST_CASE("Shards merged equal the whole sweep in every error figure", "[sweep]"
   CHECK(run_boxpile("sweep-merge " + (dir / "s1").string() + " " + (dir / "s1").string() + " --report " +
                     (dir / "twice").string()) == 2);
   CHECK(!fs::exists(dir / "twice"));
+}
+
+TEST_CASE("A setting reaches the field it names, from a grid or from run --set", "[sweep]") {
+  EngineConfig config{fixture("stack_5"), {}};
+  apply_settings("ode", {{"erp", 0.8}, {"cfm", 1e-5}, {"stepper", "world"}, {"iterations", 7}}, config);
+  CHECK(config.reference.ode_erp == 0.8);
+  CHECK(config.reference.ode_cfm == 1e-5);
+  CHECK(config.reference.ode_method == OdeStepMethod::Step);
+  CHECK(config.reference.ode_quickstep_iterations == 7);
+  apply_settings("bullet", {{"split_impulse", false}, {"iterations", 3}, {"cfm", 0.01}}, config);
+  CHECK(!config.reference.bullet_split_impulse);
+  CHECK(config.reference.bullet_iterations == 3);
+  CHECK(config.reference.bullet_cfm == 0.01);
+  apply_settings("own", {{"contact_passes", 3}, {"shock_propagation", false}, {"integrator", "explicit_euler"}}, config);
+  CHECK(config.scene.solver.contact_passes == 3);
+  CHECK(!config.scene.solver.shock_propagation);
+  CHECK(config.scene.solver.integrator == PositionIntegrator::ExplicitEuler);
+
+  // Every listed setting of every engine is accepted by its own check at its lower bound.
+  for (std::string_view engine : available_engine_names()) {
+    for (const EngineSetting& s : engine_settings(engine)) {
+      INFO(engine << "." << s.key);
+      json value = s.kind == EngineSetting::Kind::Boolean ? json(true)
+                   : s.kind == EngineSetting::Kind::Choice ? json(std::string(s.choices.front()))
+                                                           : json(s.min);
+      CHECK_NOTHROW(parse_setting_words(engine, {std::string(s.key) + "=" + value.dump()}, "test"));
+    }
+  }
+  CHECK(parse_setting_words("ode", {"stepper=world", "erp=0.5"}, "test") == json({{"stepper", "world"}, {"erp", 0.5}}));
+  CHECK_THROWS_AS(parse_setting_words("ode", {"erp"}, "test"), InputError);
+  CHECK_THROWS_AS(parse_setting_words("bullet", {"stepper=world"}, "test"), InputError);
+
+  // From the command line: ODE's dWorldStep settles the stack of five far better than 5 QuickStep
+  // iterations in a second, so the setting did reach ODE; a bad one is exit 2.
+  const fs::path dir = scratch("sweep_set");
+  const std::string scene = scene_path("stack_5");
+  REQUIRE(run_boxpile("run " + scene + " --engine ode --duration 1 --set stepper=world --out " + (dir / "world.json").string()) == 0);
+  REQUIRE(run_boxpile("run " + scene + " --engine ode --duration 1 --set iterations=5 --out " + (dir / "quick.json").string()) == 0);
+  auto top_speed = [](const fs::path& file) {
+    double fastest = 0.0;
+    const json doc = json::parse(read(file));
+    for (const json& b : doc.at("final").at("bodies")) {
+      const std::vector<double> v = b.at("velocity").get<std::vector<double>>();
+      fastest = std::max(fastest, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    }
+    return fastest;
+  };
+  CHECK(top_speed(dir / "world.json") < 0.1 * top_speed(dir / "quick.json"));
+  CHECK(run_boxpile("run " + scene + " --engine ode --duration 0.1 --set erp=2") == 2);
+  CHECK(run_boxpile("run " + scene + " --engine bullet --duration 0.1 --set stepper=world") == 2);
 }

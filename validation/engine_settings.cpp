@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "sim/solver/step_context.hpp"
+#include "sim/io/input_error.hpp"
 #include "validation/engine_factory.hpp"
 
 namespace boxpile {
@@ -172,6 +173,27 @@ void check_setting_value(const EngineSetting& setting, const JsonNode& value) {
       value.choice(setting.choices, setting.key);
       return;
   }
+}
+
+nlohmann::json parse_setting_words(std::string_view engine, const std::vector<std::string>& words,
+                                   const std::string& source) {
+  json settings = json::object();
+  for (const std::string& word : words) {
+    const std::size_t eq = word.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw InputError(source, "--set", "expected key=value, got " + json_input::in_quotes(word));
+    }
+    const std::string key = word.substr(0, eq), text = word.substr(eq + 1);
+    json value = json::parse(text, nullptr, false);
+    if (value.is_discarded()) value = text;
+    settings[key] = value;
+  }
+  const JsonNode root(settings, source);
+  for (const auto& item : settings.items()) {
+    const JsonNode value = root.at(item.key());
+    check_setting_value(find_setting(engine, item.key(), value), value);
+  }
+  return settings;
 }
 
 std::string settings_markdown() {

@@ -6,6 +6,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -48,6 +49,12 @@ void check_setting_value(const EngineSetting& setting, const json_input::JsonNod
 
 // Applies settings {key: value} (each already checked) to `config`.
 void apply_settings(std::string_view engine, const nlohmann::json& settings, EngineConfig& config);
+
+// Settings given as "key=value" words (a command line's --set): each value read as JSON (5, 0.2,
+// true, "world") or, when that fails, as a string (world); checked like a grid's. InputError
+// naming `source` and the key otherwise. Returns {key: value}.
+nlohmann::json parse_setting_words(std::string_view engine, const std::vector<std::string>& words,
+                                   const std::string& source);
 
 // Every available engine's settings as Markdown tables (`boxpile settings`, docs/sweeps.md).
 std::string settings_markdown();

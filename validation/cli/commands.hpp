@@ -38,6 +38,7 @@ struct RunOptions {
   std::string out;                 // empty: print a summary instead
   std::string ode_method = "quickstep";  // ReferenceSettings::ode_method
   std::optional<int> iterations;   // ODE QuickStep or Bullet solver iterations; the default's when absent
+  std::vector<std::string> set;    // "key=value": any setting of the engine (boxpile settings)
 };
 void add_run_command(CLI::App& app, RunOptions& options);
 int run_run(const RunOptions& options);

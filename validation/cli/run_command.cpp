@@ -10,6 +10,7 @@
 #include "validation/cli/json_output.hpp"
 #include "sim/world.hpp"
 #include "validation/engine_factory.hpp"
+#include "validation/engine_settings.hpp"
 #include "validation/state_meter.hpp"
 
 namespace boxpile::cli {
@@ -102,6 +103,11 @@ void add_run_command(CLI::App& app, RunOptions& options) {
   cmd->add_option("--iterations", options.iterations,
                   "Solver iterations: ODE QuickStep's (default 20) or Bullet's (default 10)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--set", options.set,
+                  "Any setting of the engine as key=value, repeatable (e.g. --set erp=0.8 --set cfm=1e-5 for ode); "
+                  "`boxpile settings` lists them with units")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
 int run_run(const RunOptions& options) {
@@ -116,6 +122,12 @@ int run_run(const RunOptions& options) {
   if (options.iterations) {
     settings.ode_quickstep_iterations = *options.iterations;
     settings.bullet_iterations = *options.iterations;
+  }
+  if (!options.set.empty()) {
+    EngineConfig config{scene, settings};
+    apply_settings(options.engine, parse_setting_words(options.engine, options.set, "command line"), config);
+    scene = std::move(config.scene);
+    settings = config.reference;
   }
   const std::unique_ptr<Engine> engine = make_engine(options.engine, scene, settings);
   const bool record = !options.out.empty();
