@@ -1,7 +1,7 @@
-# ../../fixtures/scenes/pyramid.json: residual after each pass (own collision_passes=10 contact_passes=20 shock_passes=20, mean over the run): rerun with `gnuplot convergence_pyramid.gp` in this directory.
+# pyramid.json: residual after each pass (mean over the run): rerun with `gnuplot convergence_pyramid.gp` in this directory.
 set terminal svg size 900,480 dynamic enhanced font 'Helvetica,13' background '#ffffff'
 set output 'convergence_pyramid.svg'
-set title '../../fixtures/scenes/pyramid.json: residual after each pass (own collision_passes=10 contact_passes=20 shock_passes=20, mean over the run)' noenhanced
+set title 'pyramid.json: residual after each pass (mean over the run)' noenhanced
 set xlabel 'pass' noenhanced
 set ylabel 'largest approaching normal velocity (m/s)' noenhanced
 set grid lc rgb '#dddddd'
@@ -11,5 +11,5 @@ set logscale y
 set format y '10^{%L}'
 plot 'convergence_pyramid.dat' index 0 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#0072B2' title 'collision loop', \
      'convergence_pyramid.dat' index 1 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#D55E00' title 'contact loop', \
-     'convergence_pyramid.dat' index 2 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#009E73' title 'shock propagation: largest velocity change in the pass', \
-     1.68081071e-10 with lines lw 1 dt 3 lc rgb '#777777' title 'after shock propagation'
+     'convergence_pyramid.dat' index 2 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#009E73' title 'shock propagation (largest change)', \
+     1.68081071e-10 with lines lw 1 dt 3 lc rgb '#777777' title 'after shock'

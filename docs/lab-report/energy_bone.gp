@@ -1,7 +1,7 @@
-# bone hits the pile (our impulse method): energy against time, collision events marked: rerun with `gnuplot energy_bone.gp` in this directory.
+# bone_hits_pile, ours: energy against time, collision events marked: rerun with `gnuplot energy_bone.gp` in this directory.
 set terminal svg size 900,480 dynamic enhanced font 'Helvetica,13' background '#ffffff'
 set output 'energy_bone.svg'
-set title 'bone hits the pile (our impulse method): energy against time, collision events marked' noenhanced
+set title 'bone_hits_pile, ours: energy against time, collision events marked' noenhanced
 set xlabel 't (s)' noenhanced
 set ylabel 'energy (J)' noenhanced
 set grid lc rgb '#dddddd'
