@@ -156,6 +156,7 @@ TEST_CASE("A small sweep returns every cell with its cost and error", "[sweep]")
     CHECK(c.measures.error.at("penetration").get<double>() < 1e-3);
     CHECK(c.measures.stable);
     CHECK(c.convergence.has_value() == (c.spec.engine == "own"));
+    CHECK(c.jobs == 2);  // timed side by side, and says so
   }
   // Our method's convergence: one mean residual per pass of each loop.
   CHECK(results[2].convergence->contact.size() == 2);

@@ -156,6 +156,7 @@ nlohmann::json cell_json(const CellResult& c) {
                       {"dt", c.spec.dt},
                       {"steps", c.steps},
                       {"timed_runs", c.timed_runs},
+                      {"jobs", c.jobs},
                       {"us_per_step", c.us_per_step},
                       {"us_per_simulated_second", c.us_per_simulated_second},
                       {"error", c.measures.error},
@@ -175,6 +176,7 @@ CellResult cell_from_json(const nlohmann::json& j) {
   c.scene = j.at("scene").get<std::string>();
   c.steps = j.at("steps").get<long>();
   c.timed_runs = j.at("timed_runs").get<int>();
+  c.jobs = j.value("jobs", 1);
   c.us_per_step = j.at("us_per_step").get<double>();
   c.us_per_simulated_second = j.at("us_per_simulated_second").get<double>();
   c.measures.error = j.at("error");

@@ -31,6 +31,8 @@ struct CellResult {
   std::string scene;  // the scene's path as the grid names it
   long steps = 0;
   int timed_runs = 0;
+  // Cells timed side by side (--jobs): their timings include that competition.
+  int jobs = 1;
   double us_per_step = 0.0;               // the least of the timed runs
   double us_per_simulated_second = 0.0;   // us_per_step / dt
   CellMeasures measures;

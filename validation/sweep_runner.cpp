@@ -36,7 +36,8 @@ fs::path cell_file(const fs::path& dir, int index) { return dir / ("cell-" + std
   int code = 0;
   try {
     for (std::size_t k = static_cast<std::size_t>(w); k < cells.size(); k += static_cast<std::size_t>(jobs)) {
-      const CellResult r = run_cell(grid, cells[k]);
+      CellResult r = run_cell(grid, cells[k]);
+      r.jobs = jobs;
       write_json_file(cell_json(r), cell_file(dir, cells[k].index).string());
     }
   } catch (const std::exception& e) {
