@@ -125,8 +125,9 @@ CellResult run_cell(const SweepGrid& grid, const CellSpec& cell) {
 
   double least = run.wall_seconds;
   r.timed_runs = 1;
-  const bool own_impulse = (cell.engine == "own" || cell.engine == "own-impulse") &&
-                           config.scene.solver.method == ContactSolver::Impulse;
+  // "own-impulse" forces the method; "own" runs the scene's.
+  const bool own_impulse = cell.engine == "own-impulse" ||
+                           (cell.engine == "own" && config.scene.solver.method == ContactSolver::Impulse);
   ConvergenceMeter meter(config.scene.solver);
   // Our impulse method's statistics come from one timed run; with a single repetition that run
   // is added (reading them is outside the timed steps).
