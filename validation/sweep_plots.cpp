@@ -130,7 +130,8 @@ PlotSpec iterations_plot(const SweepReport& r, const std::string& scene, const s
     if (!std::isfinite(err)) continue;
     nlohmann::json others = c.spec.settings;
     others.erase("iterations");
-    const std::string title = c.spec.engine + " " + settings_label(others) + " dt=" + std::to_string(c.spec.dt).substr(0, 8);
+    const std::string title = c.spec.engine + (others.empty() ? "" : " " + settings_label(others)) + " dt=" +
+                              std::to_string(c.spec.dt).substr(0, 8);
     if (!lines.count(title)) {
       lines[title] = PlotSeries{title, {}, {}, Style::LinePoints, color_of(engines, c.spec.engine)};
       order.push_back(title);
