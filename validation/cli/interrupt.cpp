@@ -1,7 +1,5 @@
 #include "validation/cli/interrupt.hpp"
 
-#include <csignal>
-
 namespace boxpile::cli {
 namespace {
 
@@ -9,6 +7,8 @@ volatile std::sig_atomic_t g_interrupted = 0;
 extern "C" void on_interrupt(int) { g_interrupted = 1; }
 
 }  // namespace
+
+bool interrupted() { return g_interrupted != 0; }
 
 InterruptGuard::InterruptGuard() {
   g_interrupted = 0;
@@ -20,7 +20,5 @@ InterruptGuard::~InterruptGuard() {
   std::signal(SIGINT, previous_int_);
   std::signal(SIGTERM, previous_term_);
 }
-
-bool interrupted() { return g_interrupted != 0; }
 
 }  // namespace boxpile::cli

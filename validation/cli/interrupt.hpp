@@ -1,9 +1,14 @@
-// Ctrl-C (or SIGTERM) during a long command: the handler only sets a flag; the command's progress
-// callback throws Interrupted when it sees it, so that staging directories are removed on the way
-// out and no report, not even a partial one, is left behind.
+// Ctrl-C (or SIGTERM) during a long command: the handler only sets a flag; the command checks
+// it at its next progress call and stops by throwing Interrupted, so that the staging directory
+// of its report is removed on the way out and no report, not even a partial one, is left behind.
 #pragma once
 
+#include <csignal>
+
 namespace boxpile::cli {
+
+// Set by the handler while an InterruptGuard is alive.
+bool interrupted();
 
 struct Interrupted {};
 
@@ -19,8 +24,5 @@ class InterruptGuard {
   void (*previous_int_)(int);
   void (*previous_term_)(int);
 };
-
-// Whether a signal has arrived since the guard was installed.
-bool interrupted();
 
 }  // namespace boxpile::cli
