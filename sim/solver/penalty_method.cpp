@@ -41,7 +41,6 @@ void PenaltyMethod::apply_contact_forces(StepContext& ctx) {
   PenaltyCounters& counters = ctx.counters.penalty;
   anchors_.begin_step();
   for (const BodyContact& bc : ctx.contacts) {
-    if (bc.contact.depth <= 0.0) continue;  // a speculative point: no spring until it touches
     RigidBody& a = ctx.bodies[bc.body_a];
     const bool b_is_ground = bc.body_b == kGround;
     RigidBody* b_body = b_is_ground ? nullptr : &ctx.bodies[bc.body_b];
@@ -66,8 +65,12 @@ void PenaltyMethod::apply_contact_forces(StepContext& ctx) {
     // The anchor lives on B (in its axes about its centre of mass; in the world for the ground).
     auto to_b = [&](const Vec3& world) { return b_is_ground ? world : Vec3(b.R.transpose() * (world - b.x)); };
     bool created = false;
-    FrictionAnchor& anchor = anchors_.find_or_create(AnchorKey::of(bc), to_b(p), created);
+    const Vec3 on_a = a.R.transpose() * ra;
+    FrictionAnchor& anchor = anchors_.find_or_create(AnchorKey::of(bc), on_a, to_b(p), created);
     counters.anchors_created += created ? 1 : 0;
+    // A point within the contact margin but not touching keeps its anchor and gets no force: a
+    // resting face's corners that rise by rounding do not lose their anchors.
+    if (bc.contact.depth <= 0.0) continue;
     Vec3 anchor_world = b_is_ground ? anchor.on_b : Vec3(b.x + b.R * anchor.on_b);
     const PenaltyForce f = penalty_force(pt, anchor_world, anchor.sliding);
     anchor.on_b = to_b(anchor_world);
