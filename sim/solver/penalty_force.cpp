@@ -16,9 +16,10 @@ PenaltyForce penalty_force(const PenaltyPoint& pt, Vec3& anchor, bool& sliding) 
   const Vec3 stretch = offset - n.dot(offset) * n;  // tangential, m
   const double spring = pt.friction_stiffness * stretch.norm();
   const double kinetic = pt.dynamic_mu * out.normal;
-  // Sliding continues while the spring, dragged along, still pulls at least mu_d f_n; sticking
-  // ends when it pulls more than mu_s f_n.
-  sliding = sliding ? spring >= kinetic : spring > pt.static_mu * out.normal;
+  const Vec3 ut = pt.u - un * n;
+  // Sliding continues while the point still moves away from its anchor and the spring, dragged
+  // along, pulls at least mu_d f_n; sticking ends when the spring pulls more than mu_s f_n.
+  sliding = sliding ? spring >= kinetic && stretch.dot(ut) > 0.0 : spring > pt.static_mu * out.normal;
   if (sliding) {
     out.slipped = true;
     if (spring > 0.0) {
@@ -28,7 +29,6 @@ PenaltyForce penalty_force(const PenaltyPoint& pt, Vec3& anchor, bool& sliding) 
     }
     return out;
   }
-  const Vec3 ut = pt.u - un * n;
   Vec3 ft = -pt.friction_stiffness * stretch - pt.damping * ut;
   const double limit = pt.static_mu * out.normal;
   if (ft.norm() > limit) ft *= limit / ft.norm();  // the damper too stays within the cone

@@ -8,7 +8,8 @@
 // Static and dynamic Coulomb friction: while |k_f s| <= mu_s f_n the anchor stays put (F_t is
 // then bounded by mu_s f_n); once it leaves that cone the point slides, and each step the anchor
 // is dragged to where the spring's force is mu_d f_n along the slip direction, F_t = -mu_d f_n s^.
-// A sliding point sticks again when the spring, dragged no farther, pulls less than mu_d f_n.
+// A sliding point sticks again when it stops moving away from its anchor, or when the spring,
+// dragged no farther, pulls less than mu_d f_n.
 #pragma once
 
 #include "sim/math.hpp"
