@@ -25,7 +25,7 @@ FrictionAnchor& FrictionAnchors::find_or_create(const AnchorKey& key, const Vec3
     }
   }
   created = match == nullptr;
-  current_.push_back(created ? FrictionAnchor{key, on_a, on_b, false} : *match);
+  current_.push_back(created ? FrictionAnchor{key, on_a, on_a, on_b, false} : *match);
   current_.back().key = key;
   current_.back().on_a = on_a;
   return current_.back();

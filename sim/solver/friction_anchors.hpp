@@ -37,7 +37,11 @@ inline constexpr double kAnchorMatchDistance = 1e-3;  // m
 
 struct FrictionAnchor {
   AnchorKey key;
-  Vec3 on_a = Vec3::Zero();  // the contact point on body A, in its axes about its centre of mass
+  Vec3 on_a = Vec3::Zero();  // this step's contact point on body A, in its axes about its centre of mass
+  // The friction spring's two ends: on A, the material point where the contact began (A's
+  // axes), so that the spring measures how far A has moved over B even where the contact point
+  // itself is a crossing of edges that stays put on B; and on B, below.
+  Vec3 tie_a = Vec3::Zero();
   // Where the friction spring is tied: on body B, in its axes relative to its centre of mass
   // (in the world for the ground), so that the anchor moves with B.
   Vec3 on_b = Vec3::Zero();

@@ -3,7 +3,7 @@
 //
 // With d > 0 the penetration, u the velocity of A's point relative to B's and n from B toward A:
 //   normal      f_n = max(0, k d - c u_n)   (zero at zero penetration, never pulling);
-//   friction    the spring from the anchor q to the contact point p, tangential part
+//   friction    the spring from the anchor q (on B) to p (on A), tangential part
 //               s = (p - q) - ((p - q) . n) n, force F_t = -k_f s - c u_t while it sticks.
 // Static and dynamic Coulomb friction: while |k_f s| <= mu_s f_n the anchor stays put (F_t is
 // then bounded by mu_s f_n); once it leaves that cone the point slides, and each step the anchor
@@ -18,7 +18,8 @@ namespace boxpile {
 
 struct PenaltyPoint {
   Vec3 n = Vec3::UnitZ();  // unit, from B toward A
-  Vec3 p = Vec3::Zero();   // contact point, world
+  // The friction spring's end on A: the material point of A where the contact began (world).
+  Vec3 p = Vec3::Zero();
   double depth = 0.0;      // m, > 0 penetrating
   Vec3 u = Vec3::Zero();   // m/s, A's point relative to B's
   double stiffness = 0.0;           // k, N/m

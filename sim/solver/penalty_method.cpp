@@ -52,7 +52,6 @@ void PenaltyMethod::apply_contact_forces(StepContext& ctx) {
     const Material m = combine_materials(a.material, b.material);
     PenaltyPoint pt;
     pt.n = bc.contact.normal;
-    pt.p = p;
     pt.depth = bc.contact.depth;
     pt.u = a.v + a.omega.cross(ra) - b.v - b.omega.cross(rb);
     pt.stiffness = parameters_.stiffness;
@@ -71,6 +70,7 @@ void PenaltyMethod::apply_contact_forces(StepContext& ctx) {
     // A point within the contact margin but not touching keeps its anchor and gets no force: a
     // resting face's corners that rise by rounding do not lose their anchors.
     if (bc.contact.depth <= 0.0) continue;
+    pt.p = a.x + a.R * anchor.tie_a;
     Vec3 anchor_world = b_is_ground ? anchor.on_b : Vec3(b.x + b.R * anchor.on_b);
     const PenaltyForce f = penalty_force(pt, anchor_world, anchor.sliding);
     anchor.on_b = to_b(anchor_world);
