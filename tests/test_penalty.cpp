@@ -189,7 +189,7 @@ TEST_CASE("the hard catalogue stands under the penalty method", "[penalty]") {
   // Each stays up: no box ends lower than its start by more than the derived springs' sink
   // (at most the 1 mm allowed overlap times the levels, 10 for the tallest) plus 1 mm, nor moves
   // sideways by more than `drift`. The stacks hold to 1 mm; the pyramid's boxes, each resting on
-  // the edges of two below, creep sideways (measured 9 mm in 5 s, docs/penalty.md).
+  // the edges of two below, creep sideways (measured 3.9 mm in 5 s, docs/penalty.md).
   struct Case {
     const char* name;
     double drift;  // m
