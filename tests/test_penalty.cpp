@@ -60,6 +60,35 @@ double total_energy(const World& w, double stiffness) {
   return measure_energy(w.bodies(), w.scene().gravity).total() + elastic;
 }
 
+// The restitution of a mass on a linear spring-damper (ratio zeta) that lands at v0 and leaves
+// when the force k d + c d' reaches 0 (the clamp: it never pulls), before d returns to 0:
+// d(t) = v0 / wd e^(-zeta w t) sin(wd t), found by bisection on the force's sign change.
+double clamped_restitution(double zeta) {
+  const double omega = 1.0, wd = omega * std::sqrt(1.0 - zeta * zeta);
+  auto depth = [&](double t) { return std::exp(-zeta * omega * t) * std::sin(wd * t) / wd; };
+  auto rate = [&](double t) {
+    return std::exp(-zeta * omega * t) * (std::cos(wd * t) - zeta * omega / wd * std::sin(wd * t));
+  };
+  auto force = [&](double t) { return omega * omega * depth(t) + 2.0 * zeta * omega * rate(t); };
+  double lo = 0.5 * M_PI / wd, hi = M_PI / wd;  // the force changes sign once in between
+  for (int i = 0; i < 60; ++i) (force(0.5 * (lo + hi)) > 0.0 ? lo : hi) = 0.5 * (lo + hi);
+  return -rate(lo);
+}
+
+// A unit box (m = 1 kg) landing flat at 1 m/s on k = 1e4 N/m per corner, without gravity; the
+// restitution it leaves with.
+double landing_restitution(Scene s) {
+  const double v0 = 1.0;
+  s.effects.gravity = false;
+  s.solver.penalty.stiffness = 1e4;
+  s.solver.penalty.substeps = 40;  // h = dt / 40 = 1e-4 s, omega h = 0.02
+  s.bodies[0].velocity = Vec3(0, 0, -v0);
+  s.bodies[0].frame.position.z() += 0.01;
+  World w(s);
+  run(w, 0.2);
+  return w.bodies()[0].v.z() / v0;
+}
+
 }  // namespace
 
 TEST_CASE("a box at rest sinks m g / (4 k) on its four corners", "[penalty]") {
@@ -92,40 +121,37 @@ TEST_CASE("a stack of five sinks the sum over its levels, level j carrying j box
 }
 
 TEST_CASE("a box landing flat bounces with the damped spring's restitution", "[penalty]") {
-  // A unit box (m = 1 kg) lands flat at v0 = 1 m/s, without gravity, on four corner springs k
-  // and dampers c: one oscillator of stiffness 4k and damping 4c, omega = sqrt(4k / m),
-  // zeta = 4c / (2 sqrt(4k m)). A linear spring-damper leaves at e = exp(-zeta pi / sqrt(1 - zeta^2)).
-  // Ours never pulls (f_n >= 0): contact ends when 4k d + 4c d' reaches 0, with the box still
-  // in the ground and moving out at e_clamp v0 > e v0. The measured restitution lies between
-  // the two, closest to e_clamp: the clamp explains the whole difference.
-  const double k = 1e4, m = 1.0, v0 = 1.0;
+  // Four corner springs k and dampers c under a box landing flat: one oscillator of stiffness
+  // 4k and damping 4c, omega = sqrt(4k / m), zeta = 4c / (2 sqrt(4k m)). A linear spring-damper
+  // leaves at e = exp(-zeta pi / sqrt(1 - zeta^2)). Ours never pulls (f_n >= 0): contact ends when
+  // 4k d + 4c d' reaches 0, with the box still in the ground and moving out at e_clamp v0 > e v0.
+  // The measured restitution lies between the two, within 0.02 of e_clamp (the step's own error,
+  // omega h = 0.02): the clamp explains the whole difference.
+  const double k = 1e4, m = 1.0;
   for (const double zeta : {0.05, 0.1, 0.3}) {
     Scene s = penalty(fixture("box_at_rest"));
-    s.effects.gravity = false;
-    s.solver.penalty.stiffness = k;
     s.solver.penalty.damping = point_damping(k, m / 4.0, zeta);
-    s.solver.penalty.substeps = 40;  // h = dt / 40 = 1e-4 s, omega h = 0.02
-    s.bodies[0].velocity = Vec3(0, 0, -v0);
-    s.bodies[0].frame.position.z() += 0.01;
-    World w(s);
-    run(w, 0.2);
-    const double e_measured = w.bodies()[0].v.z() / v0;
-
-    const double omega = std::sqrt(4.0 * k / m), wd = omega * std::sqrt(1.0 - zeta * zeta);
-    auto depth = [&](double t) { return v0 / wd * std::exp(-zeta * omega * t) * std::sin(wd * t); };
-    auto rate = [&](double t) {
-      return v0 * std::exp(-zeta * omega * t) * (std::cos(wd * t) - zeta * omega / wd * std::sin(wd * t));
-    };
-    auto force = [&](double t) { return omega * omega * depth(t) + 2.0 * zeta * omega * rate(t); };
-    double lo = 0.5 * M_PI / wd, hi = M_PI / wd;  // the force changes sign once in between
-    for (int i = 0; i < 60; ++i) (force(0.5 * (lo + hi)) > 0.0 ? lo : hi) = 0.5 * (lo + hi);
-    const double e_clamp = -rate(lo) / v0;
+    const double e_measured = landing_restitution(s);
+    const double e_clamp = clamped_restitution(zeta);
     const double e_linear = restitution_for_damping_ratio(zeta);
     INFO("zeta " << zeta << ": measured e = " << e_measured << ", linear " << e_linear << ", clamped " << e_clamp);
     CHECK(e_measured >= e_linear - 0.01);
     CHECK(e_measured <= e_clamp + 0.01);
-    CHECK(std::abs(e_measured - e_clamp) <= 0.02);  // the step's own error: omega h = 0.02
+    CHECK(std::abs(e_measured - e_clamp) <= 0.02);
   }
+}
+
+TEST_CASE("without a damping key, a pair's restitution sets its damping ratio", "[penalty]") {
+  // Material restitution 0.5 with the restitution effect: zeta = -ln 0.5 / sqrt(pi^2 + ln^2 0.5)
+  // = 0.215 for the box-ground pair, and the box leaves as the damped spring of that ratio does.
+  Scene s = penalty(fixture("box_at_rest"));
+  s.effects.restitution = true;
+  s.material.restitution = 0.5;
+  const double zeta = damping_ratio_for_restitution(0.5);
+  const double e_measured = landing_restitution(s);
+  INFO("zeta " << zeta << ": measured e = " << e_measured << ", clamped " << clamped_restitution(zeta));
+  CHECK(e_measured >= 0.5 - 0.01);
+  CHECK(std::abs(e_measured - clamped_restitution(zeta)) <= 0.02);
 }
 
 TEST_CASE("on an incline, static friction above tan(theta) holds the box even when dynamic is below", "[penalty][friction]") {
