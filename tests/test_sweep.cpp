@@ -116,6 +116,11 @@ TEST_CASE("Grid errors name the key before anything runs", "[sweep]") {
   CHECK_THAT(grid_error(dir, {{"own", json::object()}}, json::array({"no_such_scene.json"})),
              Contains("scenes[0]") && Contains("no scene file"));
   CHECK_THAT(grid_error(dir, json::object()), Contains("engines"));
+  // "own" runs each scene's method: a penalty setting on an impulse scene would do nothing.
+  CHECK_THAT(grid_error(dir, {{"own", {{"stiffness", {1e4}}}}}),
+             Contains("engines.own.stiffness") && Contains("own-penalty"));
+  CHECK_THAT(grid_error(dir, {{"own-impulse", {{"substeps", {5}}}}}), Contains("engines.own-impulse.substeps"));
+  CHECK(grid_error(dir, {{"own-penalty", {{"stiffness", {1e4, 1e5}}, {"substeps", {5}}}}, {"own", {{"contact_passes", {5}}}}}) == "");
 
   json extra = {{"scenes", {scene_path("stack_5")}}, {"engines", {{"own", json::object()}}}, {"step", {0.01}}};
   write(dir / "extra.json", extra.dump());

@@ -1,5 +1,6 @@
 #include "validation/engine_settings.hpp"
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <vector>
@@ -20,9 +21,18 @@ using nlohmann::json;
 constexpr double kMaxReferenceIterations = 100000;
 // Largest distance or speed a setting may name: none of them has a meaningful value beyond.
 constexpr double kMaxLength = 1e3;  // m (or m/s)
+// Penalty springs: the loader's bounds (positive; substeps as many as a run of seconds can take).
+constexpr double kSoftestSpring = 1e-6;   // N/m: softer holds nothing up
+constexpr double kStiffestSpring = 1e12;  // N/m (and N s/m for the damper)
+constexpr int kMaxPenaltySubsteps = 100000;
 
 constexpr std::array<std::string_view, 2> kIntegrators = {"explicit_euler", "semi_implicit_euler"};
 constexpr std::array<std::string_view, 2> kOdeSteppers = {"quickstep", "world"};
+
+// Contact generation, shared by both of our methods (the scene's `collision` key).
+const EngineSetting kReduceToFour{
+    "reduce_to_four", Kind::Boolean, "", "reduce each box-box manifold to at most 4 points", 0, 0, {},
+    [](EngineConfig& c, const json& v) { c.scene.collision.reduce_to_four = v.get<bool>(); }};
 
 // Our impulse method (the scene's `solver` and `collision` keys, docs/scene-format.md).
 const std::array kImpulseSettings = {
@@ -53,9 +63,38 @@ const std::array kImpulseSettings = {
                                                     ? PositionIntegrator::ExplicitEuler
                                                     : PositionIntegrator::SemiImplicitEuler;
                   }},
-    EngineSetting{"reduce_to_four", Kind::Boolean, "", "reduce each box-box manifold to at most 4 points", 0, 0,
-                  {}, [](EngineConfig& c, const json& v) { c.scene.collision.reduce_to_four = v.get<bool>(); }},
+    kReduceToFour,
 };
+
+// Our penalty method (the scene's penalty keys in `solver`, docs/penalty.md); each one left out
+// is derived from the scene when the world is built.
+const std::array kPenaltySettings = {
+    EngineSetting{"stiffness", Kind::Number, "N/m", "normal spring per contact point", kSoftestSpring, kStiffestSpring,
+                  {}, [](EngineConfig& c, const json& v) { c.scene.solver.penalty.stiffness = v.get<double>(); }},
+    EngineSetting{"damping", Kind::Number, "N s/m", "normal and tangential damper per contact point", 0,
+                  kStiffestSpring, {},
+                  [](EngineConfig& c, const json& v) { c.scene.solver.penalty.damping = v.get<double>(); }},
+    EngineSetting{"friction_stiffness", Kind::Number, "N/m", "friction spring per contact point", kSoftestSpring,
+                  kStiffestSpring, {},
+                  [](EngineConfig& c, const json& v) { c.scene.solver.penalty.friction_stiffness = v.get<double>(); }},
+    EngineSetting{"substeps", Kind::Integer, "", "penalty steps per scene step", 1, kMaxPenaltySubsteps, {},
+                  [](EngineConfig& c, const json& v) { c.scene.solver.penalty.substeps = v.get<int>(); }},
+    kReduceToFour,
+};
+
+// "own" runs each scene's method: every setting of either method (load_grid checks that a
+// method's setting meets only scenes of that method).
+const std::vector<EngineSetting> kOwnSettings = [] {
+  std::vector<EngineSetting> all(kImpulseSettings.begin(), kImpulseSettings.end());
+  for (const EngineSetting& s : kPenaltySettings) {
+    if (s.key != kReduceToFour.key) all.push_back(s);
+  }
+  return all;
+}();
+
+bool lists(std::span<const EngineSetting> settings, std::string_view key) {
+  return std::any_of(settings.begin(), settings.end(), [&](const EngineSetting& s) { return s.key == key; });
+}
 
 // The restitution threshold is one setting of both references.
 const EngineSetting kRestitutionThreshold{
@@ -130,7 +169,9 @@ std::span<const EngineSetting> engine_settings(std::string_view engine) {
   check_engine_name(engine);
   if (engine == "ode") return kOdeSettings;
   if (engine == "bullet") return kBulletSettings;
-  if (engine == "own" || engine == "own-impulse") return kImpulseSettings;
+  if (engine == "own-impulse") return kImpulseSettings;
+  if (engine == "own-penalty") return kPenaltySettings;
+  if (engine == "own") return kOwnSettings;
   return {};
 }
 
@@ -194,6 +235,13 @@ nlohmann::json parse_setting_words(std::string_view engine, const std::vector<st
     check_setting_value(find_setting(engine, item.key(), value), value);
   }
   return settings;
+}
+
+std::optional<ContactSolver> setting_method(std::string_view engine, std::string_view key) {
+  if (engine != "own") return std::nullopt;
+  const bool impulse = lists(kImpulseSettings, key), penalty = lists(kPenaltySettings, key);
+  if (impulse == penalty) return std::nullopt;
+  return impulse ? ContactSolver::Impulse : ContactSolver::Penalty;
 }
 
 std::string settings_markdown() {

@@ -3,6 +3,7 @@
 // collision settings (our engine) or the reference engines' ReferenceSettings (ODE, Bullet).
 #pragma once
 
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -49,6 +50,10 @@ void check_setting_value(const EngineSetting& setting, const json_input::JsonNod
 
 // Applies settings {key: value} (each already checked) to `config`.
 void apply_settings(std::string_view engine, const nlohmann::json& settings, EngineConfig& config);
+
+// The contact method a setting of "own" belongs to (it runs each scene's method); empty for the
+// settings of both methods and for every other engine (which forces its method or has none).
+std::optional<ContactSolver> setting_method(std::string_view engine, std::string_view key);
 
 // Settings given as "key=value" words (a command line's --set): each value read as JSON (5, 0.2,
 // true, "world") or, when that fails, as a string (world); checked like a grid's. InputError

@@ -78,6 +78,25 @@ void product(const std::vector<std::pair<std::string, std::vector<nlohmann::json
   partial.erase(axes[k].first);
 }
 
+// "own" runs each scene's method: a setting of one method must not meet a scene of the other,
+// where it would do nothing.
+void check_methods(const SweepGrid& grid, const JsonNode& engines) {
+  for (const GridEngine& engine : grid.engines) {
+    for (const auto& axis : engine.axes) {
+      const std::optional<ContactSolver> method = setting_method(engine.name, axis.first);
+      if (!method) continue;
+      for (const GridScene& s : grid.scenes) {
+        if (s.scene.solver.method == *method) continue;
+        const bool impulse = *method == ContactSolver::Impulse;
+        engines.at(engine.name).at(axis.first).fail(
+            std::string("a setting of the ") + (impulse ? "impulse" : "penalty") + " method, but scene " + s.path +
+            " uses the " + (impulse ? "penalty" : "impulse") + " method; use engine \"" +
+            (impulse ? "own-impulse" : "own-penalty") + "\" to force one");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 SweepGrid load_grid(const std::string& path) {
@@ -102,6 +121,7 @@ SweepGrid load_grid(const std::string& path) {
   for (const auto& item : engines.json().items()) grid.engines.push_back(read_engine(item.key(), engines.at(item.key())));
 
   grid.scenes = read_scenes(root.at("scenes"), fs::path(path).parent_path());
+  check_methods(grid, engines);
   if (grid.duration) {
     for (GridScene& s : grid.scenes) s.scene.time.duration = *grid.duration;
   }

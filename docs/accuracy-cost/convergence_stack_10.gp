@@ -1,7 +1,7 @@
-# ../../fixtures/scenes/stack_10.json: residual after each pass (own contact_passes=10 shock_passes=20, mean over the run): rerun with `gnuplot convergence_stack_10.gp` in this directory.
+# stack_10.json: residual after each pass (mean over the run): rerun with `gnuplot convergence_stack_10.gp` in this directory.
 set terminal svg size 900,480 dynamic enhanced font 'Helvetica,13' background '#ffffff'
 set output 'convergence_stack_10.svg'
-set title '../../fixtures/scenes/stack_10.json: residual after each pass (own contact_passes=10 shock_passes=20, mean over the run)' noenhanced
+set title 'stack_10.json: residual after each pass (mean over the run)' noenhanced
 set xlabel 'pass' noenhanced
 set ylabel 'largest approaching normal velocity (m/s)' noenhanced
 set grid lc rgb '#dddddd'
@@ -11,5 +11,5 @@ set logscale y
 set format y '10^{%L}'
 plot 'convergence_stack_10.dat' index 0 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#0072B2' title 'collision loop', \
      'convergence_stack_10.dat' index 1 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#D55E00' title 'contact loop', \
-     'convergence_stack_10.dat' index 2 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#009E73' title 'shock propagation: largest velocity change in the pass', \
-     7.36030919e-11 with lines lw 1 dt 3 lc rgb '#777777' title 'after shock propagation'
+     'convergence_stack_10.dat' index 2 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#009E73' title 'shock propagation (largest change)', \
+     7.36030919e-11 with lines lw 1 dt 3 lc rgb '#777777' title 'after shock'

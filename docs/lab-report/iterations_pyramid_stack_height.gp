@@ -11,5 +11,5 @@ set logscale x
 set format x '10^{%L}'
 set logscale y
 set format y '10^{%L}'
-plot 'iterations_pyramid_stack_height.dat' index 0 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#0072B2' title 'bullet  dt=0.004167', \
-     'iterations_pyramid_stack_height.dat' index 1 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#D55E00' title 'ode  dt=0.004167'
+plot 'iterations_pyramid_stack_height.dat' index 0 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#0072B2' title 'bullet dt=0.004167', \
+     'iterations_pyramid_stack_height.dat' index 1 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#D55E00' title 'ode dt=0.004167'
