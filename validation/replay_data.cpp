@@ -177,11 +177,11 @@ json replay_data(const std::string& title, const std::vector<const Recording*>& 
 
   json notes = json::array();
   if (frame_stride > 1) {
-    notes.push_back("every " + std::to_string(frame_stride) + "th recorded frame is kept (" + std::to_string(body_states) +
+    notes.push_back("one recorded frame in " + std::to_string(frame_stride) + " is kept (" + std::to_string(body_states) +
                     " body states over the page's budget of " + std::to_string(budget.body_states) + ")");
   }
   if (contact_stride > 1) {
-    notes.push_back("contacts are drawn on every " + std::to_string(contact_stride) + "th frame only (" +
+    notes.push_back("contacts are drawn on one frame in " + std::to_string(contact_stride) + " only (" +
                     std::to_string(contact_points) + " contact points over the page's budget of " +
                     std::to_string(budget.contact_points) + ")");
   }

@@ -1,7 +1,8 @@
 // The replay page of boxpile: draws the recordings packed in #replay-data (docs/viewer.md) with
 // three.js, one viewport per engine (cameras linked) or all engines overlaid, on one timeline.
 // The page reports its state on <body> for tests: data-state ("loading", "ready" or
-// "error: ..."), data-engines, data-frames, data-frame, data-contacts, data-mode, data-resources.
+// "error: ..."), data-engines, data-frames, data-frame, data-contacts, data-mode, data-resources
+// (resources loaded from outside the page: 0) and data-canvas (the 3D view: left,top,width,height).
 (function () {
   'use strict';
 
@@ -542,6 +543,8 @@
     setMode(state.mode);
     showFrame(isFinite(start) ? start : 0);
     body.setAttribute('data-resources', String(performance.getEntriesByType('resource').length));
+    var rect = canvas.getBoundingClientRect();
+    body.setAttribute('data-canvas', [rect.left, rect.top, rect.width, rect.height].map(Math.round).join(','));
     body.setAttribute('data-state', 'ready');
   }
 
