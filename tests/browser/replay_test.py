@@ -72,11 +72,12 @@ def body_attributes(dom):
 
 
 def external_resources(html):
-    """Elements that would load something from outside the file, and url(...) or @import in styles."""
-    found = re.findall(r"<(?:script|link|img|iframe|audio|video|source|object|embed|track)\b[^>]*\b(?:src|href|data)\s*=",
-                       html, re.IGNORECASE)
-    # Outside the inlined scripts, no address at all (three.js holds namespace strings, never loaded).
+    """What would load something from outside the file: a script with src, an element with src,
+    href or data, url(...) or @import in a style, any address outside the inlined scripts (three.js
+    holds namespace strings in its code, never loaded)."""
+    found = [tag for tag in re.findall(r"<script\b[^>]*>", html, re.IGNORECASE) if re.search(r"\bsrc\s*=", tag)]
     outside = re.sub(r"<script\b[^>]*>.*?</script>", "", html, flags=re.DOTALL | re.IGNORECASE)
+    found += re.findall(r"<\w+\b[^>]*\b(?:src|href|data|srcset|poster)\s*=[^>]*>", outside, re.IGNORECASE)
     found += re.findall(r"(?:https?:|ftp:|file:)//|url\(|@import", outside, re.IGNORECASE)
     return found
 
