@@ -51,9 +51,7 @@ if(NOT again EQUAL first)
   fail("view DIR: ${again} bytes, compare wrote ${first}")
 endif()
 file(MAKE_DIRECTORY "${WORK}/not_a_report")
-run_boxpile(2 view "${WORK}/not_a_report")
-expect_contains("${err}" "not a boxpile report directory")
-expect_absent("${WORK}/not_a_report/replay.html")
+expect_refused("not a boxpile report directory" "${WORK}/not_a_report/replay.html" view "${WORK}/not_a_report")
 
 # Run again into the same directory: the previous report is replaced whole.
 run_boxpile(0 compare "${stack}" --engines bullet --duration 0.1 --report "${WORK}/report")
@@ -64,17 +62,10 @@ if(NOT n EQUAL 1)
 endif()
 
 # --- bad input: exit 2, a message, nothing written ---
-run_boxpile(2 compare "${stack}" --engines own,physx --report "${WORK}/bad_engine")
-expect_contains("${err}" "unknown engine \"physx\"; available: own, ode, bullet")
-expect_absent("${WORK}/bad_engine")
-
-run_boxpile(2 compare "${WORK}/missing.json" --report "${WORK}/bad_scene")
-expect_contains("${err}" "missing.json")
-expect_absent("${WORK}/bad_scene")
-
-run_boxpile(2 compare "${FIXTURES}/bad/overlap.json" --report "${WORK}/bad_overlap")
-expect_contains("${err}" "overlap.json")
-expect_absent("${WORK}/bad_overlap")
+expect_refused("unknown engine \"physx\"; available: own, ode, bullet" "${WORK}/bad_engine"
+               compare "${stack}" --engines own,physx --report "${WORK}/bad_engine")
+expect_refused("missing.json" "${WORK}/bad_scene" compare "${WORK}/missing.json" --report "${WORK}/bad_scene")
+expect_refused("overlap.json" "${WORK}/bad_overlap" compare "${FIXTURES}/bad/overlap.json" --report "${WORK}/bad_overlap")
 
 file(WRITE "${WORK}/a_file" "not a directory\n")
 run_boxpile(2 compare "${stack}" --duration 0.1 --report "${WORK}/a_file/report")

@@ -57,3 +57,11 @@ function(expect_exists path)
     fail("${path} was not written")
   endif()
 endfunction()
+
+# expect_refused(<message fragment> <path> <args...>): boxpile exits with 2 for bad input, its
+# message holds the fragment, and nothing is written at the path.
+function(expect_refused fragment path)
+  run_boxpile(2 ${ARGN})
+  expect_contains("${err}" "${fragment}")
+  expect_absent("${path}")
+endfunction()
