@@ -27,10 +27,10 @@ std::vector<ReplayMark> marks_from_report(const nlohmann::json& report);
 // Bounds on what a page holds, so that a long run of a large pile still opens in a browser.
 struct ReplayBudget {
   // Body states kept (frames x bodies, over all engines): beyond it, every k-th frame is kept.
-  std::size_t body_states = 120000;  // 13 floats each: about 8 MB of base64
+  std::size_t body_states = 60000;  // 13 float32 each: about 4.2 MB of base64
   // Contact points kept (over all engines and kept frames): beyond it, contacts are kept on every
   // k-th frame only.
-  std::size_t contact_points = 80000;  // 36 bytes each: about 3.8 MB of base64
+  std::size_t contact_points = 60000;  // 36 bytes each: about 2.9 MB of base64
 };
 
 // Packs `runs` (one scene: the first run's shapes are drawn) into the page's data.
