@@ -193,7 +193,7 @@ json replay_data(const std::string& title, const std::vector<const Recording*>& 
   for (const ReplayMark& m : marks) marks_json.push_back({{"t", m.t}, {"label", m.label}});
   return {{"format", kFormat},
           {"title", title},
-          {"dt", runs.empty() ? 0.0 : runs.front()->dt * static_cast<double>(frame_stride)},
+          {"dt", runs.empty() ? 0.0 : runs.front()->dt},  // s, the simulation step
           {"shapes", runs.empty() ? json(nullptr) : shapes_json(runs.front()->shapes)},
           {"frame_stride", frame_stride},
           {"contact_stride", contact_stride},

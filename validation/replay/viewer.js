@@ -13,7 +13,22 @@
   var GROUND = 0x9c9c94;
   var GRID = 0x84847c;
   var WIRE = 0xd0d0d0;
-  var HIGHLIGHT = 0xffff66;
+  // A picked body glows by this much yellow, in every engine.
+  var HIGHLIGHT = 0x555522;
+  // Ambient light keeps every face's hue readable; the sun (from the front left, above) shades
+  // faces apart. Together they stay below 1 on a lit face, so no colour clips to white.
+  var AMBIENT = 0.55;
+  var SUN = 0.5;
+  // Contacts are drawn in the engine's colour darkened to this fraction, so they stand out on it.
+  var CONTACT_SHADE = 0.45;
+  // Contact dots, in screen pixels (the same at any distance).
+  var DOT_PIXELS = 7;
+  // An arrow head's radius and length, as fractions of the arrow's base length.
+  var HEAD_RADIUS = 0.22;
+  var HEAD_LENGTH = 0.45;
+  // Vertical field of view, degrees; the first view leaves this much margin around the scene.
+  var FOV = 40;
+  var FIT_MARGIN = 1.05;
   // Opacity of bodies when engines are overlaid.
   var OVERLAY_OPACITY = 0.45;
   // Floats per body state and per contact point (the packing of validation/replay_data.cpp).
@@ -177,7 +192,7 @@
   // contact points, normal shafts and arrow heads, in buffers sized for its largest frame.
   function buildEngine(engine, shapes, arrowBase) {
     var colour = new THREE.Color(engine.colour);
-    var dark = colour.clone().multiplyScalar(0.45);
+    var dark = colour.clone().multiplyScalar(CONTACT_SHADE);
     engine.group = new THREE.Group();
     engine.edgeMaterial = new THREE.LineBasicMaterial({ color: dark, transparent: true });
     engine.materials = [];
@@ -194,11 +209,11 @@
     var pointGeometry = new THREE.BufferGeometry();
     pointGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * n), 3));
     engine.points = new THREE.Points(pointGeometry, new THREE.PointsMaterial({
-      color: dark, size: 7, sizeAttenuation: false, depthTest: false }));
+      color: dark, size: DOT_PIXELS, sizeAttenuation: false, depthTest: false }));
     var shaftGeometry = new THREE.BufferGeometry();
     shaftGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6 * n), 3));
     engine.shafts = new THREE.LineSegments(shaftGeometry, new THREE.LineBasicMaterial({ color: dark, depthTest: false }));
-    engine.heads = new THREE.InstancedMesh(new THREE.ConeBufferGeometry(0.22 * arrowBase, 0.45 * arrowBase, 10),
+    engine.heads = new THREE.InstancedMesh(new THREE.ConeBufferGeometry(HEAD_RADIUS * arrowBase, HEAD_LENGTH * arrowBase, 10),
       new THREE.MeshBasicMaterial({ color: dark, depthTest: false }), n);
     engine.contactGroup = new THREE.Group();
     [engine.points, engine.shafts, engine.heads].forEach(function (o) {
@@ -232,8 +247,8 @@
     renderer.setPixelRatio(window.devicePixelRatio || 1);
     renderer.setClearColor(BACKGROUND);
     var scene = new THREE.Scene();
-    scene.add(new THREE.AmbientLight(0xffffff, 0.55));
-    var sun = new THREE.DirectionalLight(0xffffff, 0.5);
+    scene.add(new THREE.AmbientLight(0xffffff, AMBIENT));
+    var sun = new THREE.DirectionalLight(0xffffff, SUN);
     sun.position.set(0.4, -0.6, 1.0);
     scene.add(sun);
     var bounds = sceneBounds(data, engines);
@@ -242,7 +257,7 @@
     var arrowBase = ARROW_BASE_FRACTION * bounds.typical;
     engines.forEach(function (e) { buildEngine(e, shapes, arrowBase); scene.add(e.group); });
 
-    var camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+    var camera = new THREE.PerspectiveCamera(FOV, 1, 0.01, 1000);
     camera.up.set(0, 0, 1);
     var controls = new THREE.OrbitControls(camera, canvas);
     controls.enableDamping = false;
@@ -252,7 +267,7 @@
       var centre = bounds.box.getCenter(new THREE.Vector3());
       var direction = new THREE.Vector3().fromArray(VIEW_DIRECTION).normalize();
       var v = viewports()[0];
-      var distance = 1.05 * fitDistance(bounds.box, direction, camera.fov, v.w / Math.max(1, v.h));
+      var distance = FIT_MARGIN * fitDistance(bounds.box, direction, camera.fov, v.w / Math.max(1, v.h));
       camera.position.copy(centre).addScaledVector(direction, distance);
       controls.target.copy(centre);
       var asked = function (key) {
@@ -380,7 +395,7 @@
 
     function setHighlight(on) {
       if (!state.picked) return;
-      engines.forEach(function (e) { e.materials[state.picked.body].emissive.setHex(on ? 0x555522 : 0x000000); });
+      engines.forEach(function (e) { e.materials[state.picked.body].emissive.setHex(on ? HIGHLIGHT : 0x000000); });
     }
     function vec(a, s, digits) {
       return '(' + [a[s], a[s + 1], a[s + 2]].map(function (x) { return x.toFixed(digits); }).join(', ') + ')';
