@@ -168,9 +168,10 @@ def main():
           f"data-contacts {body.get('data-contacts')!r}, expected {contacts} (report.json, frame {FRAME})")
     check(body.get("data-resources") == "0", f"the page loaded {body.get('data-resources')} resources")
 
-    # The same frame with contacts off draws none.
-    dom = run_chromium(chromium, ["--dump-dom"], url + "&contacts=0").stdout
-    check(body_attributes(dom).get("data-contacts") == "0", "contacts=0: contact points still drawn")
+    # The same frame with contacts off draws none; a body picked by name is shown as picked.
+    other = body_attributes(run_chromium(chromium, ["--dump-dom"], url + "&contacts=0&pick=p3_0").stdout)
+    check(other.get("data-contacts") == "0", "contacts=0: contact points still drawn")
+    check(other.get("data-picked") == "p3_0", f"pick=p3_0: data-picked is {other.get('data-picked')!r}")
 
     shot = os.path.join(work, "replay.png")
     run_chromium(chromium, [f"--screenshot={shot}", window], url)

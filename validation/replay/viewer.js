@@ -2,7 +2,8 @@
 // three.js, one viewport per engine (cameras linked) or all engines overlaid, on one timeline.
 // The page reports its state on <body> for tests: data-state ("loading", "ready" or
 // "error: ..."), data-engines, data-frames, data-frame, data-contacts, data-mode, data-resources
-// (resources loaded from outside the page: 0) and data-canvas (the 3D view: left,top,width,height).
+// (resources loaded from outside the page: 0), data-picked (the picked body's name) and
+// data-canvas (the 3D view: left,top,width,height).
 (function () {
   'use strict';
 
@@ -402,6 +403,7 @@
     }
     function showPicked() {
       var info = $('info');
+      body.setAttribute('data-picked', state.picked ? shapes.bodies[state.picked.body].name : '');
       if (!state.picked) { info.textContent = ''; return; }
       var i = state.picked.body, lines = [shapes.bodies[i].name + (shapes.bodies[i].fixed ? ' (fixed)' : '')];
       engines.forEach(function (e) {
