@@ -168,10 +168,15 @@ def main():
           f"data-contacts {body.get('data-contacts')!r}, expected {contacts} (report.json, frame {FRAME})")
     check(body.get("data-resources") == "0", f"the page loaded {body.get('data-resources')} resources")
 
-    # The same frame with contacts off draws none; a body picked by name is shown as picked.
-    other = body_attributes(run_chromium(chromium, ["--dump-dom"], url + "&contacts=0&pick=p3_0").stdout)
+    # Overlaid, contacts off, a body picked by name, playing: the 0.1 s run plays to its last frame
+    # within the 5 s of virtual time, drawing no contact, with the body still picked.
+    other = body_attributes(run_chromium(chromium, ["--dump-dom"],
+                                         url.replace("mode=side", "mode=overlay") + "&contacts=0&pick=p3_0&play=1").stdout)
+    check(other.get("data-mode") == "overlay", f"mode=overlay: data-mode is {other.get('data-mode')!r}")
     check(other.get("data-contacts") == "0", "contacts=0: contact points still drawn")
     check(other.get("data-picked") == "p3_0", f"pick=p3_0: data-picked is {other.get('data-picked')!r}")
+    last = str(len(report["engines"][ENGINES[0]]["series"]["t"]) - 1)
+    check(other.get("data-frame") == last, f"play=1: stopped at frame {other.get('data-frame')!r}, expected {last}")
 
     shot = os.path.join(work, "replay.png")
     run_chromium(chromium, [f"--screenshot={shot}", window], url)

@@ -548,7 +548,8 @@
     });
     $('notes').textContent = notes.length ? 'Note: ' + notes.join('; ') : '';
 
-    // The start the address asks for: #frame=N or #t=T, mode=side|overlay, contacts=0|1, pick=NAME.
+    // The start the address asks for: #frame=N or #t=T, mode=side|overlay, contacts=0|1, pick=NAME,
+    // play=1 (and camera=x,y,z, target=x,y,z: resetCamera).
     if (hash.get('mode') === 'side' || hash.get('mode') === 'overlay') state.mode = hash.get('mode');
     if (hash.get('contacts') === '0') state.contacts = false;
     $('contacts').checked = state.contacts;
@@ -563,6 +564,7 @@
     var rect = canvas.getBoundingClientRect();
     body.setAttribute('data-canvas', [rect.left, rect.top, rect.width, rect.height].map(Math.round).join(','));
     body.setAttribute('data-state', 'ready');
+    if (hash.get('play') === '1') setPlaying(true);
   }
 
   try {
