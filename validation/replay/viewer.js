@@ -7,9 +7,10 @@
 (function () {
   'use strict';
 
-  // One colour per engine, in the order the data lists them (hues far apart, told apart on screen
-  // and by the browser tests).
+  // One colour per engine (hues far apart, told apart on screen and by the browser tests). Known
+  // engines keep theirs on every page; any other takes the next colour no engine of the page has.
   var PALETTE = ['#e8743b', '#3b7dd8', '#2ca25f', '#9b59b6', '#d6336c', '#c9a227'];
+  var ENGINE_COLOUR = { 'own': 0, 'ode': 1, 'bullet': 2, 'own-impulse': 3, 'own-penalty': 4 };
   var BACKGROUND = 0x14171c;
   var GROUND = 0x9c9c94;
   var GRID = 0x84847c;
@@ -80,11 +81,22 @@
     return out;
   }
 
-  function readEngine(e, index, bodies) {
+  function engineColours(names) {
+    var used = {}, next = 0;
+    names.forEach(function (n) { if (n in ENGINE_COLOUR) used[ENGINE_COLOUR[n]] = true; });
+    return names.map(function (n) {
+      if (n in ENGINE_COLOUR) return PALETTE[ENGINE_COLOUR[n]];
+      while (used[next % PALETTE.length] && next < 2 * PALETTE.length) ++next;
+      used[next % PALETTE.length] = true;
+      return PALETTE[next++ % PALETTE.length];
+    });
+  }
+
+  function readEngine(e, colour, bodies) {
     var counts = e.contact_counts, offsets = [0];
     for (var f = 0; f < counts.length; ++f) offsets.push(offsets[f] + counts[f]);
     var engine = {
-      name: e.name, colour: PALETTE[index % PALETTE.length], t: e.t, energy: e.energy, frames: e.t.length,
+      name: e.name, colour: colour, t: e.t, energy: e.energy, frames: e.t.length,
       states: floats(e.states), counts: counts, offsets: offsets, contacts: floats(e.contacts),
       pairs: int16s(e.contact_bodies), features: uint32s(e.contact_features), stopped: e.stopped,
       maxContacts: Math.max.apply(null, counts.concat([0]))
@@ -231,7 +243,8 @@
     var data = JSON.parse($('replay-data').textContent);
     if (typeof THREE === 'undefined') throw new Error('three.js is missing from the page');
     var shapes = data.shapes, nBodies = shapes.bodies.length;
-    var engines = data.engines.map(function (e, i) { return readEngine(e, i, nBodies); });
+    var colours = engineColours(data.engines.map(function (e) { return e.name; }));
+    var engines = data.engines.map(function (e, i) { return readEngine(e, colours[i], nBodies); });
     if (engines.length === 0) throw new Error('no engine in the data');
     var frames = Math.max.apply(null, engines.map(function (e) { return e.frames; }));
     var clock = engines.filter(function (e) { return e.frames === frames; })[0];
@@ -283,7 +296,7 @@
       controls.update();
     }
     var state = {
-      frame: 0, mode: engines.length > 1 ? 'side' : 'overlay', contacts: true, gain: 20,
+      frame: 0, mode: 'side', contacts: true, gain: 20,
       playing: false, speed: 1, picked: null, playTime: 0
     };
 
