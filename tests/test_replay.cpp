@@ -203,6 +203,14 @@ TEST_CASE("a replay page's data holds every frame, body and contact of its recor
     CHECK(std::bit_cast<float>(bits) == static_cast<float>(r.frames.states[6][4].position.x()));
   }
   CHECK(data.at("marks")[0].at("t") == 0.5);
+  CHECK(data.at("engines")[0].at("stopped").is_null());
+
+  // A run that blew up says where it stopped.
+  Recording stopped = ode;
+  stopped.stopped = NonFiniteStop{25, 25 * scene.time.dt, "b3", "velocity"};
+  const json with_stop = replay_data("stack_5", {&stopped}, {});
+  CHECK(with_stop.at("engines")[0].at("stopped").at("body") == "b3");
+  CHECK(with_stop.at("engines")[0].at("stopped").at("step") == 25);
 
   json broken = data;
   broken["engines"][1]["states"] = "AAAA";

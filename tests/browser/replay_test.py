@@ -178,6 +178,17 @@ def main():
     last = str(len(report["engines"][ENGINES[0]]["series"]["t"]) - 1)
     check(other.get("data-frame") == last, f"play=1: stopped at frame {other.get('data-frame')!r}, expected {last}")
 
+    # A page whose data does not add up says so on <body> rather than drawing nonsense.
+    data_tag = re.search(r'(<script id="replay-data" type="application/json">)(.*?)(</script>)', html, re.DOTALL)
+    data = json.loads(data_tag.group(2))
+    data["engines"][1]["states"] = "AAAA"
+    broken = os.path.join(work, "broken.html")
+    with open(broken, "w", encoding="utf-8") as f:
+        f.write(html[:data_tag.start(2)] + json.dumps(data).replace("</", "<\\/") + html[data_tag.end(2):])
+    state = body_attributes(run_chromium(chromium, ["--dump-dom"], "file://" + broken).stdout).get("data-state", "")
+    print("broken page:", state)
+    check(state.startswith("error: ") and ENGINES[1] in state, f"a broken page reports data-state {state!r}")
+
     shot = os.path.join(work, "replay.png")
     run_chromium(chromium, [f"--screenshot={shot}", window], url)
     check(os.path.isfile(shot), "chromium wrote no screenshot")
