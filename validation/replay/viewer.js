@@ -499,84 +499,100 @@
       requestAnimationFrame(tick);
     }
 
-    $('mode-side').addEventListener('click', function () { setMode('side'); });
-    $('mode-overlay').addEventListener('click', function () { setMode('overlay'); });
-    $('contacts').addEventListener('change', function (ev) { setContacts(ev.target.checked); });
-    $('gain').addEventListener('input', function (ev) {
-      state.gain = Number(ev.target.value);
+    function bindControls() {
+      $('mode-side').addEventListener('click', function () { setMode('side'); });
+      $('mode-overlay').addEventListener('click', function () { setMode('overlay'); });
+      $('contacts').addEventListener('change', function (ev) { setContacts(ev.target.checked); });
+      $('gain').addEventListener('input', function (ev) {
+        state.gain = Number(ev.target.value);
+        $('gain-value').textContent = ' ' + state.gain;
+        showFrame(state.frame);
+      });
       $('gain-value').textContent = ' ' + state.gain;
-      showFrame(state.frame);
-    });
-    $('gain-value').textContent = ' ' + state.gain;
-    $('reset').addEventListener('click', function () { resetCamera(); render(); });
-    $('play').addEventListener('click', function () { setPlaying(!state.playing); });
-    $('back').addEventListener('click', function () { setPlaying(false); showFrame(state.frame - 1); });
-    $('forward').addEventListener('click', function () { setPlaying(false); showFrame(state.frame + 1); });
-    $('speed').addEventListener('change', function (ev) { state.speed = Number(ev.target.value); });
-    var slider = $('slider');
-    slider.max = String(frames - 1);
-    slider.addEventListener('input', function () { setPlaying(false); showFrame(Number(slider.value)); });
-    controls.addEventListener('change', render);
-    window.addEventListener('resize', render);
-    document.addEventListener('keydown', function (ev) {
-      if (ev.target.tagName === 'INPUT' && ev.target.type !== 'checkbox' && ev.key !== ' ') return;
-      if (ev.key === ' ') { ev.preventDefault(); setPlaying(!state.playing); }
-      else if (ev.key === 'ArrowLeft') { setPlaying(false); showFrame(state.frame - 1); }
-      else if (ev.key === 'ArrowRight') { setPlaying(false); showFrame(state.frame + 1); }
-      else if (ev.key === 'c') setContacts(!state.contacts);
-      else if (ev.key === 'm') setMode(state.mode === 'side' ? 'overlay' : 'side');
-      else if (ev.key === 'r') { resetCamera(); render(); }
-    });
+      $('reset').addEventListener('click', function () { resetCamera(); render(); });
+      $('play').addEventListener('click', function () { setPlaying(!state.playing); });
+      $('back').addEventListener('click', function () { setPlaying(false); showFrame(state.frame - 1); });
+      $('forward').addEventListener('click', function () { setPlaying(false); showFrame(state.frame + 1); });
+      $('speed').addEventListener('change', function (ev) { state.speed = Number(ev.target.value); });
+      var slider = $('slider');
+      slider.max = String(frames - 1);
+      slider.addEventListener('input', function () { setPlaying(false); showFrame(Number(slider.value)); });
+      controls.addEventListener('change', render);
+      window.addEventListener('resize', render);
+      document.addEventListener('keydown', function (ev) {
+        if (ev.target.tagName === 'INPUT' && ev.target.type !== 'checkbox' && ev.key !== ' ') return;
+        if (ev.key === ' ') { ev.preventDefault(); setPlaying(!state.playing); }
+        else if (ev.key === 'ArrowLeft') { setPlaying(false); showFrame(state.frame - 1); }
+        else if (ev.key === 'ArrowRight') { setPlaying(false); showFrame(state.frame + 1); }
+        else if (ev.key === 'c') setContacts(!state.contacts);
+        else if (ev.key === 'm') setMode(state.mode === 'side' ? 'overlay' : 'side');
+        else if (ev.key === 'r') { resetCamera(); render(); }
+      });
+    }
 
-    // Engines, marks of first disagreement, notes.
-    $('engines').innerHTML = engines.map(function (e) {
-      return '<span class="swatch" style="background:' + e.colour + '"></span>' + e.name;
-    }).join(' &nbsp; ');
-    $('legend').textContent = 'dots: contact points; arrows: normals (from body B to A), length ' +
-      arrowBase.toFixed(3) + ' m + gain x depth; click a body to pick it';
     var duration = clock.t[frames - 1] - clock.t[0];
     function frameAt(t) {
       var best = 0;
       for (var f = 0; f < frames; ++f) if (Math.abs(clock.t[f] - t) < Math.abs(clock.t[best] - t)) best = f;
       return best;
     }
-    data.marks.forEach(function (m) {
-      var div = document.createElement('div');
-      div.className = 'mark';
-      div.style.left = (duration > 0 ? 100 * (m.t - clock.t[0]) / duration : 0) + '%';
-      div.title = m.label;
-      div.addEventListener('click', function () { setPlaying(false); showFrame(frameAt(m.t)); });
-      $('marks').appendChild(div);
-      var line = document.createElement('div');
-      var a = document.createElement('a');
-      a.textContent = m.label;
-      a.addEventListener('click', function () { setPlaying(false); showFrame(frameAt(m.t)); });
-      line.appendChild(document.createTextNode('first disagreement (red on the timeline): '));
-      line.appendChild(a);
-      $('marklist').appendChild(line);
-    });
-    var notes = data.notes.slice();
-    engines.forEach(function (e) {
-      if (e.stopped) notes.push(e.name + ' stopped at t = ' + e.stopped.t + ' s: ' + e.stopped.quantity + ' of ' + e.stopped.body + ' not finite');
-    });
-    $('notes').textContent = notes.length ? 'Note: ' + notes.join('; ') : '';
 
-    // The start the address asks for: #frame=N or #t=T, mode=side|overlay, contacts=0|1, pick=NAME,
-    // play=1 (and camera=x,y,z, target=x,y,z: resetCamera).
-    if (hash.get('mode') === 'side' || hash.get('mode') === 'overlay') state.mode = hash.get('mode');
-    if (hash.get('contacts') === '0') state.contacts = false;
-    $('contacts').checked = state.contacts;
-    var pick = hash.get('pick');
-    shapes.bodies.forEach(function (b, i) { if (b.name === pick) state.picked = { body: i }; });
-    setHighlight(true);
-    var start = hash.has('frame') ? Number(hash.get('frame')) : hash.has('t') ? frameAt(Number(hash.get('t'))) : 0;
-    resetCamera();
-    setMode(state.mode);
-    showFrame(isFinite(start) ? start : 0);
-    body.setAttribute('data-resources', String(performance.getEntriesByType('resource').length));
-    var rect = canvas.getBoundingClientRect();
-    body.setAttribute('data-canvas', [rect.left, rect.top, rect.width, rect.height].map(Math.round).join(','));
-    body.setAttribute('data-state', 'ready');
+    // The engines' names, the legend, the marks of first disagreement and the notes.
+    function showLabels() {
+      $('engines').innerHTML = engines.map(function (e) {
+        return '<span class="swatch" style="background:' + e.colour + '"></span>' + e.name;
+      }).join(' &nbsp; ');
+      $('legend').textContent = 'dots: contact points; arrows: normals (from body B to A), length ' +
+        arrowBase.toFixed(3) + ' m + gain x depth; click a body to pick it';
+      data.marks.forEach(function (m) {
+        var div = document.createElement('div');
+        div.className = 'mark';
+        div.style.left = (duration > 0 ? 100 * (m.t - clock.t[0]) / duration : 0) + '%';
+        div.title = m.label;
+        div.addEventListener('click', function () { setPlaying(false); showFrame(frameAt(m.t)); });
+        $('marks').appendChild(div);
+        var line = document.createElement('div');
+        var a = document.createElement('a');
+        a.textContent = m.label;
+        a.addEventListener('click', function () { setPlaying(false); showFrame(frameAt(m.t)); });
+        line.appendChild(document.createTextNode('first disagreement (red on the timeline): '));
+        line.appendChild(a);
+        $('marklist').appendChild(line);
+      });
+      var notes = data.notes.slice();
+      engines.forEach(function (e) {
+        if (e.stopped) notes.push(e.name + ' stopped at t = ' + e.stopped.t + ' s: ' + e.stopped.quantity + ' of ' + e.stopped.body + ' not finite');
+      });
+      $('notes').textContent = notes.length ? 'Note: ' + notes.join('; ') : '';
+    }
+
+    // The start the address asks for: #frame=N or #t=T, mode=side|overlay, contacts=0|1, pick=NAME
+    // (and camera=x,y,z, target=x,y,z: resetCamera).
+    function applyAddress() {
+      if (hash.get('mode') === 'side' || hash.get('mode') === 'overlay') state.mode = hash.get('mode');
+      if (hash.get('contacts') === '0') state.contacts = false;
+      $('contacts').checked = state.contacts;
+      var pick = hash.get('pick');
+      shapes.bodies.forEach(function (b, i) { if (b.name === pick) state.picked = { body: i }; });
+      setHighlight(true);
+      var start = hash.has('frame') ? Number(hash.get('frame')) : hash.has('t') ? frameAt(Number(hash.get('t'))) : 0;
+      resetCamera();
+      setMode(state.mode);
+      showFrame(isFinite(start) ? start : 0);
+    }
+
+    // What the tests read on <body> once the first frame is drawn.
+    function reportReady() {
+      body.setAttribute('data-resources', String(performance.getEntriesByType('resource').length));
+      var rect = canvas.getBoundingClientRect();
+      body.setAttribute('data-canvas', [rect.left, rect.top, rect.width, rect.height].map(Math.round).join(','));
+      body.setAttribute('data-state', 'ready');
+    }
+
+    bindControls();
+    showLabels();
+    applyAddress();
+    reportReady();
     if (hash.get('play') === '1') setPlaying(true);
   }
 
