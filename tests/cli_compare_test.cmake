@@ -53,6 +53,18 @@ endif()
 file(MAKE_DIRECTORY "${WORK}/not_a_report")
 expect_refused("not a boxpile report directory" "${WORK}/not_a_report/replay.html" view "${WORK}/not_a_report")
 
+# Without three.js the report is written all the same, without the page, and says so; `view`
+# fails (exit 1: nothing wrong with the input) and writes nothing.
+set(ENV{BOXPILE_THREE_DIR} "${WORK}/no_three")
+run_boxpile(0 compare "${stack}" --engines bullet --duration 0.1 --report "${WORK}/no_three_report")
+expect_contains("${err}" "libjs-three")
+expect_exists("${WORK}/no_three_report/replay.json")
+expect_absent("${WORK}/no_three_report/replay.html")
+run_boxpile(1 view "${WORK}/no_three_report")
+expect_contains("${err}" "three.min.js")
+expect_absent("${WORK}/no_three_report/replay.html")
+unset(ENV{BOXPILE_THREE_DIR})
+
 # Run again into the same directory: the previous report is replaced whole.
 run_boxpile(0 compare "${stack}" --engines bullet --duration 0.1 --report "${WORK}/report")
 file(READ "${WORK}/report/report.json" report)
