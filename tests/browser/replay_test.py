@@ -50,7 +50,7 @@ def check(condition, message):
 
 def chromium_command(chromium, extra, url):
     return [chromium, "--headless", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
-            "--allow-file-access-from-files", "--disable-gpu-sandbox", "--no-first-run", "--mute-audio",
+            "--disable-gpu-sandbox", "--no-first-run", "--mute-audio",
             # Any network request would fail: the page must not need one.
             "--host-resolver-rules=MAP * ~NOTFOUND", "--virtual-time-budget=5000"] + extra + [url]
 
