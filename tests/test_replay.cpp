@@ -74,10 +74,24 @@ TEST_CASE("the run loop stops at the step that leaves a state non-finite and nam
   CHECK(r.stopped->quantity == "velocity");
   CHECK(r.steps == 2);
   CHECK(steps_seen == std::vector<long>{0, 1, 2});  // no hook sees the bad step
-  CHECK(frames_seen == std::vector<long>{0, 2});
+  CHECK(frames_seen == std::vector<long>{0, 2});  // step 2 was a frame already
   REQUIRE(r.final_states.size() == 1);
   CHECK(r.final_states[0].velocity.allFinite());
   CHECK(r.final_states[0].position.z() == Approx(0.8).margin(1e-12));  // after step 2
+}
+
+TEST_CASE("a run that stops between frames records its last finite state as a frame", "[replay]") {
+  BlowUp engine(4);
+  std::vector<long> frames_seen;
+  RunHooks hooks;
+  hooks.frame = [&](const StepView& v) {
+    frames_seen.push_back(v.step);
+    CHECK(v.states[0].velocity.allFinite());
+  };
+  const RunLoopResult r = run_loop(engine, 0.1, 10, 5, hooks);
+  REQUIRE(r.stopped);
+  CHECK(r.stopped->step == 4);
+  CHECK(frames_seen == std::vector<long>{0, 3});
 }
 
 TEST_CASE("the run loop takes every step and records the start, every k-th step and the last", "[replay]") {

@@ -21,6 +21,7 @@ RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const 
   std::vector<BodyState> before, states;
   engine.body_states(states);
   before = states;
+  long last_frame = 0;
   const auto call = [&](const std::function<void(const StepView&)>& hook, long k) {
     if (hook) hook(StepView{engine, k, static_cast<double>(k) * dt, before, states});
   };
@@ -36,12 +37,16 @@ RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const 
     engine.body_states(states);
     if (const auto bad = first_non_finite(states)) {
       result.stopped = NonFiniteStop{k, static_cast<double>(k) * dt, bad->body, bad->quantity};
-      std::swap(before, states);  // keep the last finite states
+      std::swap(before, states);  // back to the last finite states
+      if (last_frame < k - 1) call(hooks.frame, k - 1);
       break;
     }
     result.steps = k;
     call(hooks.step, k);
-    if (k % every == 0 || k == steps) call(hooks.frame, k);
+    if (k % every == 0 || k == steps) {
+      call(hooks.frame, k);
+      last_frame = k;
+    }
   }
   result.wall_seconds = std::chrono::duration<double>(stepping).count();
   result.final_states = std::move(states);

@@ -45,7 +45,8 @@ struct RunLoopResult {
 };
 
 // Steps `engine` `steps` times (dt is the engine's). A step that leaves any state non-finite
-// ends the run: no hook sees that step, and the result says where it happened.
+// ends the run: no hook sees that step, the last finite states are recorded as a frame (when not
+// already), and the result says where it happened.
 RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const RunHooks& hooks);
 
 // The first non-finite quantity among `states` (body and quantity named), if any.
