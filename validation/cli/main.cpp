@@ -23,6 +23,8 @@ int main(int argc, char** argv) {
   add_compare_command(app, compare);
   SweepOptions sweep;
   add_sweep_command(app, sweep);
+  ViewOptions view;
+  add_view_command(app, view);
 
   try {
     app.parse(argc, argv);
@@ -42,6 +44,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("sweep")) return run_sweep_command(sweep);
     if (app.got_subcommand("sweep-merge")) return run_sweep_merge_command(sweep);
     if (app.got_subcommand("settings")) return run_settings_command();
+    if (app.got_subcommand("view")) return run_view(view);
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());
