@@ -221,29 +221,55 @@ SatResult separating_axis_test(const OrientedBox& a, const OrientedBox& b, const
   const Mat3& absC = at.absC;
   const Vec3& t = at.t;
 
-  SatResult face;
-  face.separation = -std::numeric_limits<double>::infinity();
-  // A's face axes: s = |t_i| - (a_i + sum_j b_j |C_ij|).
+  // Face axes, k = 0..2 for A's and 3..5 for B's; offset[k] is (cB - cA) along the axis.
+  //   A's: s = |t_i| - (a_i + sum_j b_j |C_ij|);  B's: s = |d . Bj| - (b_j + sum_i a_i |C_ij|).
+  std::array<double, 6> offset, face_sep;
   for (int i = 0; i < 3; ++i) {
-    const double sep = std::abs(t[i]) - (a.half[i] + absC.row(i).dot(b.half));
-    if (sep > face.separation) {
-      face = {sep, -sign_of(t[i]) * a.axes.col(i), FeatureKind::FaceA, i, 0};
-      if (sep > stop_above) return face;
-    }
+    offset[i] = t[i];
+    face_sep[i] = std::abs(t[i]) - (a.half[i] + absC.row(i).dot(b.half));
   }
-  // B's face axes: s = |d . Bj| - (b_j + sum_i a_i |C_ij|).
   for (int j = 0; j < 3; ++j) {
-    const double dj = at.d.dot(b.axes.col(j));
-    const double sep = std::abs(dj) - (b.half[j] + absC.col(j).dot(a.half));
-    if (sep > face.separation) {
-      face = {sep, -sign_of(dj) * b.axes.col(j), FeatureKind::FaceB, 0, j};
-      if (sep > stop_above) return face;
+    offset[3 + j] = at.d.dot(b.axes.col(j));
+    face_sep[3 + j] = std::abs(offset[3 + j]) - (b.half[j] + absC.col(j).dot(a.half));
+  }
+  int best_face = 0;
+  for (int k = 1; k < 6 && !(face_sep[best_face] > stop_above); ++k)
+    if (face_sep[k] > face_sep[best_face]) best_face = k;
+  SatResult face;
+  face.separation = face_sep[best_face];
+  if (best_face < 3) {
+    face.normal = -sign_of(offset[best_face]) * a.axes.col(best_face);
+    face.kind = FeatureKind::FaceA;
+    face.axis_a = best_face;
+  } else {
+    face.normal = -sign_of(offset[best_face]) * b.axes.col(best_face - 3);
+    face.kind = FeatureKind::FaceB;
+    face.axis_b = best_face - 3;
+  }
+  if (face.separation > stop_above) return face;
+
+  // Edge axes L = Ai x Bj, k = 3i + j. In A's frame L = e_i x C_j, so with i1 = i+1, i2 = i+2
+  // (mod 3):
+  //   |L| = sqrt(C_i1j^2 + C_i2j^2),  (cB - cA) . L = t_i2 C_i1j - t_i1 C_i2j,
+  //   rA = a_i1 |C_i2j| + a_i2 |C_i1j|,  rB = b_j1 |C_ij2| + b_j2 |C_ij1|.
+  // All nine numerators num = |(cB - cA) . L| - rA - rB and squared lengths first, without a
+  // branch, unrolled so that every index is a constant; then the scan below.
+  std::array<double, 9> dl, num, len2;
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+#pragma GCC unroll 3
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const int k = 3 * i + j;
+      len2[k] = C(i1, j) * C(i1, j) + C(i2, j) * C(i2, j);
+      dl[k] = t[i2] * C(i1, j) - t[i1] * C(i2, j);
+      const double ra = a.half[i1] * absC(i2, j) + a.half[i2] * absC(i1, j);
+      const double rb = b.half[j1] * absC(i, j2) + b.half[j2] * absC(i, j1);
+      num[k] = std::abs(dl[k]) - ra - rb;
     }
   }
 
-  // Edge axes L = Ai x Bj. In A's frame L = e_i x C_j, so with i1 = i+1, i2 = i+2 (mod 3):
-  //   |L| = sqrt(C_i1j^2 + C_i2j^2),  (cB - cA) . L = t_i2 C_i1j - t_i1 C_i2j,
-  //   rA = a_i1 |C_i2j| + a_i2 |C_i1j|,  rB = b_j1 |C_ij2| + b_j2 |C_ij1|.
   // An edge axis matters only if it separates more than the face axis plus the face bias (it
   // then wins) or more than `stop_above` (the test stops): the root and the division are taken
   // only for axes that beat that bar, found by comparing squares (num / |L| > bar).
@@ -251,34 +277,22 @@ SatResult separating_axis_test(const OrientedBox& a, const OrientedBox& b, const
   const double bias = kFaceBiasRelative * std::abs(face.separation) + kFaceBiasAbsolute * scale;
   const double edge_bar = std::min(face.separation + bias, stop_above);
   double edge_sep = -std::numeric_limits<double>::infinity();
-  int edge_i = 0, edge_j = 0;
-  double edge_len = 1.0, edge_sign = 1.0;
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const double len2 = C(i1, j) * C(i1, j) + C(i2, j) * C(i2, j);
-      if (len2 < kParallelEdgeSin * kParallelEdgeSin) continue;
-      const double dl = t[i2] * C(i1, j) - t[i1] * C(i2, j);
-      const double ra = a.half[i1] * absC(i2, j) + a.half[i2] * absC(i1, j);
-      const double rb = b.half[j1] * absC(i, j2) + b.half[j2] * absC(i, j1);
-      const double num = std::abs(dl) - ra - rb;
-      if (!exceeds(num, len2, std::max(edge_bar, edge_sep))) continue;
-      // |C| <= 1, so the plain root cannot overflow (std::hypot's care costs twice the time).
-      const double len = std::sqrt(len2);
-      edge_sep = num / len;
-      edge_i = i;
-      edge_j = j;
-      edge_len = len;
-      edge_sign = -sign_of(dl);
-      if (edge_sep > stop_above) break;
-    }
+  int edge_k = -1;
+  double edge_len = 1.0;
+  for (int k = 0; k < 9; ++k) {
+    if (len2[k] < kParallelEdgeSin * kParallelEdgeSin) continue;
+    if (!exceeds(num[k], len2[k], std::max(edge_bar, edge_sep))) continue;
+    // |C| <= 1, so the plain root cannot overflow (std::hypot's care costs twice the time).
+    edge_len = std::sqrt(len2[k]);
+    edge_sep = num[k] / edge_len;
+    edge_k = k;
     if (edge_sep > stop_above) break;
   }
 
   if (!(edge_sep > face.separation + bias)) return face;
+  const int edge_i = edge_k / 3, edge_j = edge_k % 3;
   const Vec3 axis = a.axes.col(edge_i).cross(b.axes.col(edge_j)) / edge_len;
-  return {edge_sep, edge_sign * axis, FeatureKind::EdgeEdge, edge_i, edge_j};
+  return {edge_sep, -sign_of(dl[edge_k]) * axis, FeatureKind::EdgeEdge, edge_i, edge_j};
 }
 
 }  // namespace
