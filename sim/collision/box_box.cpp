@@ -50,12 +50,14 @@ struct AxisTests {
   Vec3 d;  // cB - cA in world
 };
 
-AxisTests prepare(const OrientedBox& a, const OrientedBox& b) {
+// Scalar dot products: Eigen's packet product of two 3x3 matrices costs more at this size.
+inline AxisTests prepare(const OrientedBox& a, const OrientedBox& b) {
   AxisTests at;
-  at.C = a.axes.transpose() * b.axes;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) at.C(i, j) = a.axes.col(i).dot(b.axes.col(j));
   at.absC = at.C.cwiseAbs();
   at.d = b.center - a.center;
-  at.t = a.axes.transpose() * at.d;
+  for (int i = 0; i < 3; ++i) at.t[i] = a.axes.col(i).dot(at.d);
   return at;
 }
 
