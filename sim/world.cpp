@@ -21,7 +21,10 @@ World::World(const Scene& scene, std::string name)
     for (const BoxShape& box : b.shapes) r = std::max(r, box.offset.norm() + box.half_extents.norm());
     bounding_radius_.push_back(r);
   }
-  contacts_.reserve(8 * bodies_.size());
+  const StepStorage storage{bodies_.size()};
+  contacts_.reserve(storage.contacts());
+  events_.reserve(storage.events());
+  broadphase_.reserve(storage);
 }
 
 void World::step() {

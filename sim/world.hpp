@@ -13,6 +13,7 @@
 #include "sim/collision/collide.hpp"
 #include "sim/engine.hpp"
 #include "sim/scene.hpp"
+#include "sim/step_storage.hpp"
 #include "sim/solver/contact_method.hpp"
 #include "sim/solver/step_context.hpp"
 #include "sim/solver/wire.hpp"
