@@ -115,36 +115,39 @@ void clip_side(ClipPolygon*& cur, ClipPolygon*& spare, int axis, double sign, do
 }
 
 // Face contact: the reference face of `ref` (axis `ref_axis`, outward normal m pointing toward
-// `inc`) against the face of `inc` whose outward normal is most opposite to m. The incident box
-// is given in ref's frame: M's columns are its axes, p0 its centre (M = C and p0 = t when ref is
-// A; C^T and -C^T t when ref is B). The incident face is clipped to the reference face's side
-// planes; clip points below the reference face plane are contacts, depth = h_ref - m . p, placed
-// midway between p and its projection p + depth m.
-void face_contacts(const OrientedBox& ref, const OrientedBox& inc, const Mat3& M, const Vec3& p0,
-                   int ref_axis, const Vec3& m, bool ref_is_a, const CollisionSettings& settings,
-                   Manifold& out) {
+// `inc`) against the face of `inc` whose outward normal is most opposite to m. `cos_inc` holds
+// I_k . R_ref_axis for inc's axes I_k (a row or column of C, already computed by the test). The
+// incident face is clipped to the reference face's side planes; clip points below the reference
+// face plane are contacts, depth = h_ref - m . p, placed midway between p and its projection
+// p + depth m.
+void face_contacts(const OrientedBox& ref, const OrientedBox& inc, const Vec3& cos_inc, int ref_axis,
+                   const Vec3& m, bool ref_is_a, const CollisionSettings& settings, Manifold& out) {
   // m = sgn * ref axis: the reference face is on the positive (sgn = 1) or negative side.
   const double sgn = sign_of(m.dot(ref.axes.col(ref_axis)));
   const int ref_face = 2 * ref_axis + (sgn < 0.0 ? 1 : 0);
 
-  // Incident face: the axis l of inc most (anti)parallel to m, m . I_k = sgn M(ref_axis, k); its
+  // Incident face: the axis l of inc most (anti)parallel to m, m . I_k = sgn cos_inc[k]; its
   // outward normal s I_l with s = -sign(m . I_l), the face most opposite to m.
   int l = 0;
   for (int k = 1; k < 3; ++k)
-    if (std::abs(M(ref_axis, k)) > std::abs(M(ref_axis, l))) l = k;
-  const double s = -sign_of(sgn * M(ref_axis, l));
+    if (std::abs(cos_inc[k]) > std::abs(cos_inc[l])) l = k;
+  const double s = -sign_of(sgn * cos_inc[l]);
   const int inc_face = 2 * l + (s < 0.0 ? 1 : 0);
   const int p = (l + 1) % 3;
   const int q = (l + 2) % 3;
 
   // The face frame: side axes u (x) and w (y) of ref, outward normal m (z), origin at ref's
-  // centre. A vector v in ref's frame is (v_ju, v_jw, sgn v_ref_axis) there.
+  // centre. The incident face's centre and half edges are mapped from world coordinates (the
+  // same numbers whichever box is the reference).
   const int ju = (ref_axis + 1) % 3;
   const int jw = (ref_axis + 2) % 3;
-  auto to_face = [&](const Vec3& v) { return Vec3(v[ju], v[jw], sgn * v[ref_axis]); };
-  const Vec3 c = to_face(p0 + s * inc.half[l] * M.col(l));
-  const Vec3 lp = to_face(inc.half[p] * M.col(p));
-  const Vec3 lq = to_face(inc.half[q] * M.col(q));
+  Mat3 frame;  // rows: u, w, m
+  frame.row(0) = ref.axes.col(ju).transpose();
+  frame.row(1) = ref.axes.col(jw).transpose();
+  frame.row(2) = m.transpose();
+  const Vec3 c = frame * (inc.center + s * inc.half[l] * inc.axes.col(l) - ref.center);
+  const Vec3 lp = frame * (inc.half[p] * inc.axes.col(p));
+  const Vec3 lq = frame * (inc.half[q] * inc.axes.col(q));
 
   // Vertices counter-clockwise in (p, q): (+,+), (-,+), (-,-), (+,-); edge k runs k -> k+1.
   ClipPolygon first, second;
@@ -165,8 +168,6 @@ void face_contacts(const OrientedBox& ref, const OrientedBox& inc, const Mat3& M
   const double h_ref = ref.half[ref_axis];
   const Vec3 normal = ref_is_a ? Vec3(-m) : m;  // from B toward A
   const FeatureKind kind = ref_is_a ? FeatureKind::FaceA : FeatureKind::FaceB;
-  const Vec3 axis_u = ref.axes.col(ju);
-  const Vec3 axis_w = ref.axes.col(jw);
   for (int k = 0; k < poly->n; ++k) {
     const ClipPoint& cp = poly->pts[k];
     const double depth = h_ref - cp.p.z();
@@ -174,7 +175,8 @@ void face_contacts(const OrientedBox& ref, const OrientedBox& inc, const Mat3& M
     const FeatureId id = ref_is_a ? FeatureId::make(kind, ref_face, inc_face, cp.sub)
                                   : FeatureId::make(kind, inc_face, ref_face, cp.sub);
     // Midway between the point (height z) and its projection on the face (height h_ref).
-    const Vec3 position = ref.center + cp.p.x() * axis_u + cp.p.y() * axis_w + (cp.p.z() + 0.5 * depth) * m;
+    const Vec3 local(cp.p.x(), cp.p.y(), cp.p.z() + 0.5 * depth);
+    const Vec3 position = ref.center + frame.transpose() * local;
     out.push_back({position, normal, depth, id});
   }
 }
@@ -312,14 +314,12 @@ void collide_box_box(const OrientedBox& a, const OrientedBox& b, const Collision
 
   switch (sat.kind) {
     case FeatureKind::FaceA:
-      face_contacts(a, b, at.C, at.t, sat.axis_a, -sat.normal, /*ref_is_a=*/true, settings, out);
+      face_contacts(a, b, at.C.row(sat.axis_a).transpose(), sat.axis_a, -sat.normal, /*ref_is_a=*/true,
+                    settings, out);
       break;
-    case FeatureKind::FaceB: {
-      // A in B's frame: axes C^T, centre B^T (cA - cB) = -C^T t.
-      const Mat3 Ct = at.C.transpose();
-      face_contacts(b, a, Ct, -(Ct * at.t), sat.axis_b, sat.normal, /*ref_is_a=*/false, settings, out);
+    case FeatureKind::FaceB:
+      face_contacts(b, a, at.C.col(sat.axis_b), sat.axis_b, sat.normal, /*ref_is_a=*/false, settings, out);
       break;
-    }
     case FeatureKind::EdgeEdge: {
       // A's edge along Ai extreme toward B (along -n), B's edge along Bj extreme toward A (+n).
       const Edge ea = extreme_edge(a, sat.axis_a, -sat.normal);
