@@ -50,6 +50,7 @@ class World final : public Engine {
   double time_ = 0.0;
 
   SweepAndPrune broadphase_;
+  PlacedBoxes placed_;  // every body's boxes in the world, placed once per contact search
   std::vector<BodyContact> contacts_;
   std::vector<WireJoint> wires_;
   std::unique_ptr<ContactMethod> method_;
