@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "validation/cli/json_output.hpp"
+#include "validation/json_output.hpp"
 
 namespace boxpile {
 namespace {

@@ -11,6 +11,7 @@
 #include "sim/io/scene_loader.hpp"
 #include "validation/cli/commands.hpp"
 #include "validation/compare.hpp"
+#include "validation/data_directory.hpp"
 #include "validation/engine_factory.hpp"
 #include "validation/report.hpp"
 #include "validation/report_directory.hpp"
@@ -87,7 +88,7 @@ class ProgressPrinter {
 
 CompareOptions default_compare_options() {
   CompareOptions o;
-  o.scene = BOXPILE_DEFAULT_SCENE;
+  o.scene = data_path("fixtures/scenes/bone_hits_pile.json").string();
   return o;
 }
 

@@ -3,6 +3,8 @@
 
 #include "sim/io/input_error.hpp"
 #include "validation/cli/commands.hpp"
+#include "validation/collider_process.hpp"
+#include "validation/detectors.hpp"
 #include "validation/engine_factory.hpp"
 #include "validation/report_directory.hpp"
 
@@ -21,6 +23,8 @@ int main(int argc, char** argv) {
   add_run_command(app, run);
   CompareOptions compare;
   add_compare_command(app, compare);
+  ConformOptions conform;
+  add_conform_command(app, conform);
 
   try {
     app.parse(argc, argv);
@@ -37,6 +41,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("contacts")) return run_contacts(contacts);
     if (app.got_subcommand("run")) return run_run(run);
     if (app.got_subcommand("compare")) return run_compare_command(compare);
+    if (app.got_subcommand("conform")) return run_conform_command(conform);
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());
@@ -44,6 +49,12 @@ int main(int argc, char** argv) {
     std::cerr << "boxpile: error: " << e.what() << '\n';
     return kExitBadInput;
   } catch (const boxpile::UnknownEngine& e) {
+    std::cerr << "boxpile: error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const boxpile::UnknownDetector& e) {
+    std::cerr << "boxpile: error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const boxpile::ColliderError& e) {
     std::cerr << "boxpile: error: " << e.what() << '\n';
     return kExitBadInput;
   } catch (const boxpile::ReportDirectoryError& e) {

@@ -7,7 +7,7 @@
 #include "reference/ode_engine.hpp"
 #include "sim/io/scene_loader.hpp"
 #include "validation/cli/commands.hpp"
-#include "validation/cli/json_output.hpp"
+#include "validation/json_output.hpp"
 #include "sim/world.hpp"
 #include "validation/engine_factory.hpp"
 #include "validation/state_meter.hpp"

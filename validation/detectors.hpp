@@ -1,0 +1,40 @@
+// Every contact detector by name, one row each: ours, ODE's, Bullet's (and Bullet with its
+// multipoint box-plane option). `boxpile contacts`, `contacts --serve` and `boxpile conform`
+// iterate over this table; an outside collider joins them as a Collider (check_collider.hpp).
+#pragma once
+
+#include <span>
+#include <stdexcept>
+#include <string_view>
+
+#include "sim/collision/contact.hpp"
+#include "sim/io/query_loader.hpp"
+#include "validation/judge/check_collider.hpp"
+
+namespace boxpile {
+
+struct DetectOptions {
+  bool reduce = false;  // ours only: at most 4 box-box points
+};
+
+struct DetectorInfo {
+  std::string_view name;
+  std::string_view description;
+  bool box_plane_only;  // differs from another row on box-plane queries only
+  Manifold (*detect)(const ContactQuery& query, const DetectOptions& options);
+};
+
+// The registered detectors, in the order help texts list them.
+std::span<const DetectorInfo> detectors();
+
+// A detector name that is not registered; what() lists the registered ones.
+class UnknownDetector : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+const DetectorInfo& find_detector(std::string_view name);
+
+// A registered detector as a Collider.
+Collider detector_collider(std::string_view name, const DetectOptions& options = {});
+
+}  // namespace boxpile
