@@ -23,11 +23,11 @@ namespace {
 constexpr int kPairs = 1024;
 constexpr std::uint64_t kSeed = 1;
 
-const std::vector<test::BoxPair>& pairs() {
-  static const std::vector<test::BoxPair> set = [] {
+const std::vector<BoxPair>& pairs() {
+  static const std::vector<BoxPair> set = [] {
     std::mt19937_64 rng(kSeed);
-    std::vector<test::BoxPair> v;
-    for (int i = 0; i < kPairs; ++i) v.push_back(test::random_touching_pair(rng));
+    std::vector<BoxPair> v;
+    for (int i = 0; i < kPairs; ++i) v.push_back(random_touching_pair(rng));
     return v;
   }();
   return set;
@@ -40,7 +40,7 @@ void BM_BoxBox_Own(benchmark::State& state) {
   Manifold m;
   std::size_t i = 0;
   for (auto _ : state) {
-    const test::BoxPair& p = set[i++ % set.size()];
+    const BoxPair& p = set[i++ % set.size()];
     collide_box_box(p.a, p.b, settings, m);
     benchmark::DoNotOptimize(m);
   }
@@ -53,7 +53,7 @@ void BM_BoxBox_OwnSatOnly(benchmark::State& state) {
   const auto& set = pairs();
   std::size_t i = 0;
   for (auto _ : state) {
-    const test::BoxPair& p = set[i++ % set.size()];
+    const BoxPair& p = set[i++ % set.size()];
     benchmark::DoNotOptimize(box_box_sat(p.a, p.b));
   }
   state.SetItemsProcessed(state.iterations());
@@ -145,7 +145,7 @@ void BM_BoxBox_OdeAdapter(benchmark::State& state) {
   const auto& set = pairs();
   std::size_t i = 0;
   for (auto _ : state) {
-    const test::BoxPair& p = set[i++ % set.size()];
+    const BoxPair& p = set[i++ % set.size()];
     benchmark::DoNotOptimize(ode_box_box(p.a, p.b));
   }
   state.SetItemsProcessed(state.iterations());
@@ -156,7 +156,7 @@ void BM_BoxBox_BulletAdapter(benchmark::State& state) {
   const auto& set = pairs();
   std::size_t i = 0;
   for (auto _ : state) {
-    const test::BoxPair& p = set[i++ % set.size()];
+    const BoxPair& p = set[i++ % set.size()];
     benchmark::DoNotOptimize(bullet_box_box(p.a, p.b));
   }
   state.SetItemsProcessed(state.iterations());

@@ -91,10 +91,12 @@ TEST_CASE("every regime draws the pairs it names", "[judge]") {
   const int n = 300;
   for (const Regime r : all_regimes()) {
     INFO(regime_name(r));
-    int overlapping = 0, edge_edge = 0, face_points = 0;
+    int overlapping = 0, edge_edge = 0, face_points = 0, grazing = 0;
     for (int k = 0; k < n; ++k) {
       const BoxPair p = random_pair(r, rng);
-      if (true_depth(p.a, p.b) > 0.0) ++overlapping;
+      const double depth = true_depth(p.a, p.b);
+      if (depth > 0.0) ++overlapping;
+      if (std::abs(depth) <= 2e-3 * std::min(p.a.half.minCoeff(), p.b.half.minCoeff()) + 1e-15) ++grazing;
       Manifold m;
       collide_box_box(p.a, p.b, CollisionSettings{}, m);
       if (!m.empty() && m[0].feature.kind() == FeatureKind::EdgeEdge) ++edge_edge;
@@ -105,6 +107,11 @@ TEST_CASE("every regime draws the pairs it names", "[judge]") {
       case Regime::Deep: CHECK(overlapping == n); break;
       case Regime::EdgeEdge: CHECK(edge_edge == n); break;
       case Regime::Parallel: CHECK(face_points == n); break;
+      case Regime::Touching:
+        CHECK(grazing == n);
+        CHECK(overlapping > n / 3);
+        CHECK(overlapping < 2 * n / 3);
+        break;
       default: CHECK(overlapping > n / 2); break;
     }
   }
@@ -141,7 +148,10 @@ TEST_CASE("colliders wrong on purpose fail by the kind of their fault, on every 
           return m;
         },
         options);
-    CHECK(r.count(FailureKind::Normal) >= truth.touching);
+    // Every overlapping pair but a few where A sits deep inside B (its centre near B's): then
+    // moving A either way separates them alike, and the reversed normal is right too.
+    CHECK(r.count(FailureKind::Normal) >= truth.touching * 98 / 100);
+    CHECK(r.count(FailureKind::Normal) <= truth.touching);
   }
   SECTION("depths 1% too deep") {
     const CheckResult r = check_collider(

@@ -1,5 +1,7 @@
 #include "validation/judge/pose_sampler.hpp"
 
+#include "validation/judge/brute_force.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -45,41 +47,68 @@ Vec3 random_half(std::mt19937_64& rng) {
 
 // Shallow overlaps, as a fraction of the smaller box's smallest half extent.
 constexpr double kMaxShallowDepth = 0.05;
-// Tilts that keep a 45-degree edge the lowest feature, rad.
-constexpr double kMaxEdgeTilt = 0.1;
+// Turns about the vertical keep a horizontal edge horizontal, and turns of up to this about the
+// edge's own axis keep it the lowest (or highest) feature of a box turned 45 degrees, rad.
+constexpr double kMaxEdgeTilt = 0.3;
 
 // B turned 45 degrees about x (its top is an edge along x), A turned 45 degrees about y (its
-// bottom is an edge along y), A above B with the edges crossing a little inside their lengths.
+// bottom is an edge along y), each tilted a little about its edge and turned about the vertical,
+// A above B with the edges crossing near their middles.
 BoxPair edge_on_edge(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0), tilt(-kMaxEdgeTilt, kMaxEdgeTilt);
   const double quarter = std::numbers::pi / 4;
   const Vec3 hb = random_half(rng), ha = random_half(rng);
-  const Quat qb = Quat(Eigen::AngleAxisd(quarter + tilt(rng), Vec3::UnitX())) *
-                  Quat(Eigen::AngleAxisd(tilt(rng), Vec3::UnitZ()));
-  const Quat qa = Quat(Eigen::AngleAxisd(quarter + tilt(rng), Vec3::UnitY())) *
-                  Quat(Eigen::AngleAxisd(tilt(rng), Vec3::UnitZ()));
-  BoxPair p;
-  p.b = make_box(hb, Vec3::Zero(), qb);
-  const OrientedBox probe = make_box(ha, Vec3::Zero(), qa);
-  const double reach = probe.radius_along(Vec3::UnitZ()) + p.b.radius_along(Vec3::UnitZ());
+  const Quat qb = Quat(Eigen::AngleAxisd(tilt(rng), Vec3::UnitZ())) *
+                  Quat(Eigen::AngleAxisd(quarter + tilt(rng), Vec3::UnitX()));
+  const Quat qa = Quat(Eigen::AngleAxisd(tilt(rng), Vec3::UnitZ())) *
+                  Quat(Eigen::AngleAxisd(quarter + tilt(rng), Vec3::UnitY()));
+  // The middles of B's top edge and of A's bottom edge (from A's centre); A's edge is moved onto
+  // B's, shifted along both edges by up to a quarter of their half lengths, and sunk by `depth`.
+  const Vec3 top_b = qb * Vec3(0, hb.y(), hb.z());
+  const Vec3 bottom_a = qa * Vec3(ha.x(), 0, -ha.z());
+  const double near_middle = 0.25;
+  const Vec3 shift = near_middle * (hb.x() * (2 * unit(rng) - 1) * (qb * Vec3::UnitX()) +
+                                    ha.y() * (2 * unit(rng) - 1) * (qa * Vec3::UnitY()));
   const double depth = kMaxShallowDepth * std::min(ha.minCoeff(), hb.minCoeff()) * unit(rng);
-  const Vec3 offset(hb.x() * (unit(rng) - 0.5), ha.y() * (unit(rng) - 0.5), reach - depth);
-  p.a = make_box(ha, offset, qa);
+  const BoxPair p{make_box(ha, top_b - bottom_a + shift - depth * Vec3::UnitZ(), qa), make_box(hb, Vec3::Zero(), qb)};
   return randomly_placed(p, rng);
 }
 
 // A on top of B, both upright, A turned about the vertical only, overlapping by a shallow depth
-// and shifted sideways by up to 0.8 of the sum of their half extents.
+// and shifted sideways by up to half the sum of their half extents.
 BoxPair face_on_face(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0), sym(-1.0, 1.0);
   const Vec3 hb = random_half(rng), ha = random_half(rng);
   const Quat qa(Eigen::AngleAxisd(std::numbers::pi * sym(rng), Vec3::UnitZ()));
   const double depth = kMaxShallowDepth * std::min(ha.minCoeff(), hb.minCoeff()) * unit(rng);
   const double reach = make_box(ha, Vec3::Zero(), qa).radius_along(Vec3::UnitZ()) + hb.z();
-  const double shift = 0.8;
+  const double shift = 0.5;
   const Vec3 offset(shift * (ha.x() + hb.x()) * sym(rng) / std::sqrt(2.0),
                     shift * (ha.y() + hb.y()) * sym(rng) / std::sqrt(2.0), reach - depth);
   return randomly_placed({make_box(ha, offset, qa), make_box(hb, Vec3::Zero())}, rng);
+}
+
+// Grazing contact: a mixed pair slid along its direction until the true depth is within this
+// fraction of the smaller box's smallest half extent of zero, on either side.
+constexpr double kGrazingDepth = 2e-3;
+// Bisection steps: the reach halves each step, 60 leave 1e-18 of it (below rounding).
+constexpr int kBisectionSteps = 60;
+
+// The true depth falls as A moves away along the direction (each axis's overlap does), so
+// bisection finds the distance with the depth wanted.
+BoxPair grazing_pair(std::mt19937_64& rng) {
+  BoxPair p = pair_at_reach(rng, 0.4, 0.65, kMinHalf, kMaxHalf);
+  std::uniform_real_distribution<double> sym(-1.0, 1.0);
+  const double target = kGrazingDepth * std::min(p.a.half.minCoeff(), p.b.half.minCoeff()) * sym(rng);
+  const Vec3 dir = (p.a.center - p.b.center).normalized();
+  double near = 0.0, far = p.a.radius_along(dir) + p.b.radius_along(dir) + 1.0;
+  for (int k = 0; k < kBisectionSteps; ++k) {
+    const double mid = 0.5 * (near + far);
+    p.a.center = p.b.center + mid * dir;
+    (least_penetration(p.a, p.b, candidate_axes(p.a, p.b)) > target ? near : far) = mid;
+  }
+  p.a.center = p.b.center + near * dir;
+  return p;
 }
 
 // Millimetre or decametre boxes: the conformance suite's pair scaled by 1e-2 or 1e2.
@@ -128,7 +157,7 @@ std::optional<Regime> regime_from_name(std::string_view name) {
 BoxPair random_pair(Regime regime, std::mt19937_64& rng) {
   switch (regime) {
     case Regime::Mixed: return random_touching_pair(rng);
-    case Regime::Touching: return pair_at_reach(rng, 0.9, 0.12, kMinHalf, kMaxHalf);
+    case Regime::Touching: return grazing_pair(rng);
     case Regime::Deep: return pair_at_reach(rng, 0.05, 0.45, kMinHalf, kMaxHalf);
     case Regime::EdgeEdge: return edge_on_edge(rng);
     case Regime::Parallel: return face_on_face(rng);

@@ -34,7 +34,7 @@ BoxPair random_touching_pair(std::mt19937_64& rng);
 // collider:
 enum class Regime {
   Mixed,     // random_touching_pair: overlapping, touching and apart, any orientation
-  Touching,  // A's centre at 0.9 to 1.02 of the reach: grazing contact or a hair apart
+  Touching,  // grazing: the true depth within 0.2% of the smaller box's size of zero, either side
   Deep,      // A's centre at 0.05 to 0.5 of the reach: deep overlap
   EdgeEdge,  // two edges crossing (each box turned 45 degrees onto an edge), shallow
   Parallel,  // face on face with parallel faces (turned about the normal only): clipping
