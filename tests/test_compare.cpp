@@ -53,7 +53,7 @@ int run_boxpile(const std::string& args) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// Every key the issue fixes for other tools, present with the right type.
+// Every key docs/compare.md fixes for other tools, present with the right type.
 void check_report_keys(const json& r, const std::vector<std::string>& engines) {
   CHECK(r.at("scene").is_string());
   CHECK(r.at("dt").is_number());
