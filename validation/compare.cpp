@@ -21,12 +21,6 @@
 namespace boxpile {
 namespace {
 
-// An approach faster than this is an impact: the rule our World uses for its collision events
-// (sim/world.cpp), so that every engine's events mean the same: above the |g| dt that gravity adds
-// to a resting contact in one step (twice it), and above rounding.
-constexpr double kEventSpeedMin = 0.01;  // m/s
-constexpr double kEventSpeedGravitySteps = 2.0;
-
 // The golden angle turns each body's perturbation away from the last one's, so that no two
 // neighbours are pushed the same way.
 constexpr double kGoldenAngle = 2.399963229728653;  // rad
@@ -44,10 +38,6 @@ long step_count(const Scene& scene) { return std::lround(scene.time.duration / s
 
 long steps_per_frame(const Scene& scene, double frame_rate) {
   return std::max(1L, std::lround(1.0 / (frame_rate * scene.time.dt)));
-}
-
-double event_speed(const Scene& scene) {
-  return std::max(kEventSpeedMin, kEventSpeedGravitySteps * scene.gravity.norm() * scene.time.dt);
 }
 
 bool finite(const BodyState& s) {
@@ -137,7 +127,7 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   const double dt = scene.time.dt;
   const long steps = step_count(scene);
   const long every = steps_per_frame(scene, settings.frame_rate);
-  const double speed = event_speed(scene);
+  const double speed = collision_event_speed(scene, scene.time.dt);
 
   StateMeter meter(scene);
   WireWatch wires(scene);

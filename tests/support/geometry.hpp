@@ -1,5 +1,5 @@
-// Shared helpers for the contact tests: seeds, point-set distances and checks. Box construction,
-// the random pose pairs and the brute-force quantities (directional penetration, least
+// Shared helpers for the contact tests: seeds and point checks. Box construction, point-set
+// distances, the random pose pairs and the brute-force quantities (directional penetration, least
 // penetration) are the library's judge (validation/judge/), computed without the code under test.
 #pragma once
 
@@ -32,21 +32,6 @@ inline std::uint64_t test_seed(std::uint64_t fallback) {
 inline int test_samples(int fallback) {
   const char* s = std::getenv("BOXPILE_SAMPLES");
   return s ? std::atoi(s) : fallback;
-}
-
-// Symmetric Hausdorff distance between two point sets (infinity when exactly one is empty).
-template <class Points>
-double hausdorff(const Points& x, const Points& y) {
-  auto one_way = [](const Points& from, const Points& to) {
-    double worst = 0.0;
-    for (const auto& p : from) {
-      double nearest = std::numeric_limits<double>::infinity();
-      for (const auto& q : to) nearest = std::min(nearest, (p.position - q.position).norm());
-      worst = std::max(worst, nearest);
-    }
-    return worst;
-  };
-  return std::max(one_way(x, y), one_way(y, x));
 }
 
 // The manifold has exactly the expected points, each matched by one contact within tol. For use

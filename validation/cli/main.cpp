@@ -8,6 +8,17 @@
 #include "validation/engine_factory.hpp"
 #include "validation/report_directory.hpp"
 
+namespace {
+
+// Errors of the user's input (a file, a name, a folder, a collider): exit 2; anything else 1.
+bool is_bad_input(const std::exception& e) {
+  return dynamic_cast<const boxpile::InputError*>(&e) || dynamic_cast<const boxpile::UnknownEngine*>(&e) ||
+         dynamic_cast<const boxpile::UnknownDetector*>(&e) || dynamic_cast<const boxpile::ColliderError*>(&e) ||
+         dynamic_cast<const boxpile::ReportDirectoryError*>(&e);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace boxpile::cli;
   CLI::App app{"boxpile: a pile of boxes in our own simulator, checked against ODE and Bullet"};
@@ -45,24 +56,9 @@ int main(int argc, char** argv) {
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());
-  } catch (const boxpile::InputError& e) {
-    std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitBadInput;
-  } catch (const boxpile::UnknownEngine& e) {
-    std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitBadInput;
-  } catch (const boxpile::UnknownDetector& e) {
-    std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitBadInput;
-  } catch (const boxpile::ColliderError& e) {
-    std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitBadInput;
-  } catch (const boxpile::ReportDirectoryError& e) {
-    std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitFailure;
+    return is_bad_input(e) ? kExitBadInput : kExitFailure;
   }
   return kExitFailure;
 }

@@ -20,7 +20,22 @@ Vec3 random_direction(std::mt19937_64& rng) {
   return Vec3(g(rng), g(rng), g(rng)).normalized();
 }
 
+// Largest distance from a point of `from` to the nearest point of `to`.
+double one_way_distance(const Manifold& from, const Manifold& to) {
+  double worst = 0.0;
+  for (const Contact& p : from) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Contact& q : to) nearest = std::min(nearest, (p.position - q.position).norm());
+    worst = std::max(worst, nearest);
+  }
+  return worst;
+}
+
 }  // namespace
+
+double hausdorff(const Manifold& x, const Manifold& y) {
+  return std::max(one_way_distance(x, y), one_way_distance(y, x));
+}
 
 double projected_overlap(const OrientedBox& a, const OrientedBox& b, const Vec3& u) {
   return a.radius_along(u) + b.radius_along(u) - std::abs((a.center - b.center).dot(u));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sim/collision/box.hpp"
+#include "sim/collision/contact.hpp"
 #include "sim/math.hpp"
 
 namespace boxpile {
@@ -37,5 +38,9 @@ double least_penetration(const OrientedBox& a, const OrientedBox& b, const std::
 // How far p lies outside the box (0 or less inside), in the box's own axes: the largest excess
 // of |p_local_i| over h_i.
 double outside_distance(const OrientedBox& box, const Vec3& p);
+
+// Symmetric Hausdorff distance between the positions of two contact sets, m (0 when both are
+// empty, infinity when only one is).
+double hausdorff(const Manifold& x, const Manifold& y);
 
 }  // namespace boxpile

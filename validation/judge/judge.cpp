@@ -32,17 +32,6 @@ const Contact& deepest(const Manifold& m) {
   return *std::max_element(m.begin(), m.end(), [](const Contact& x, const Contact& y) { return x.depth < y.depth; });
 }
 
-// Largest distance from a point of `from` to the nearest point of `to`, m.
-double one_way_distance(const Manifold& from, const Manifold& to) {
-  double worst = 0.0;
-  for (const Contact& p : from) {
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const Contact& q : to) nearest = std::min(nearest, (p.position - q.position).norm());
-    worst = std::max(worst, nearest);
-  }
-  return worst;
-}
-
 // --- the stages of judging one box-box answer --------------------------------------------------
 
 // Contact where there is none, or none where there is: decided by the least penetration alone.
@@ -130,7 +119,7 @@ std::optional<Finding> swap_symmetry(const OrientedBox& a, const OrientedBox& b,
                    printed("deepest depth %.9g m for (A, B), %.9g m for (B, A)", forward.depth,
                                backward.depth)};
   }
-  const double apart = std::max(one_way_distance(answer, swapped), one_way_distance(swapped, answer));
+  const double apart = hausdorff(answer, swapped);
   if (apart > tol.region) {
     return Finding{FailureKind::Swap, apart,
                    printed("the (B, A) points lie up to %.3g m from the (A, B) points", apart)};
