@@ -346,4 +346,6 @@ void OdeEngine::contacts(std::vector<BodyContact>& out) const { out = world_->co
 
 std::uint64_t OdeEngine::messages() const { return ode_messages().count - world_->messages_at_start; }
 
+std::string OdeEngine::last_message() const { return messages() > 0 ? ode_messages().last : std::string(); }
+
 }  // namespace boxpile

@@ -36,7 +36,8 @@ class OdeEngine final : public Engine {
   void contacts(std::vector<BodyContact>& out) const override;
 
   // ODE messages caught since this engine was built.
-  std::uint64_t messages() const;
+  std::uint64_t messages() const override;
+  std::string last_message() const override;
 
  private:
   struct World;

@@ -3,6 +3,7 @@
 // adapters in reference/ implement it.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -11,6 +12,9 @@
 #include "sim/math.hpp"
 
 namespace boxpile {
+
+struct CollisionEvent;  // sim/solver/step_context.hpp
+struct StepStats;
 
 // A body's state as every engine reports it. `position` and `orientation` are the scene file's
 // body frame (not the centre of mass of a compound); `velocity` is the centre of mass's linear
@@ -39,6 +43,15 @@ class Engine {
   // from body_b toward body_a, depth > 0 when penetrating); body indices in scene order, kGround
   // for the ground.
   virtual void contacts(std::vector<BodyContact>& out) const = 0;
+
+  // --- diagnostics: what an engine can tell beside its states (by default, nothing) ---------
+  // The collision events its solver recorded so far (ours); nullptr when it records none.
+  virtual const std::vector<CollisionEvent>* collision_events() const { return nullptr; }
+  // Its solver's statistics of the last step (ours); nullptr when it keeps none.
+  virtual const StepStats* solver_stats() const { return nullptr; }
+  // Messages its library reported since the engine was built (ODE's), and the last of them.
+  virtual std::uint64_t messages() const { return 0; }
+  virtual std::string last_message() const { return {}; }
 };
 
 }  // namespace boxpile

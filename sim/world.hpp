@@ -29,6 +29,8 @@ class World final : public Engine {
   double time() const override { return time_; }
   void body_states(std::vector<BodyState>& out) const override;
   void contacts(std::vector<BodyContact>& out) const override { out = contacts_; }
+  const std::vector<CollisionEvent>* collision_events() const override { return &events_; }
+  const StepStats* solver_stats() const override { return &stats_; }
 
   const std::vector<RigidBody>& bodies() const { return bodies_; }
   std::vector<RigidBody>& bodies() { return bodies_; }

@@ -7,13 +7,12 @@
 #include <limits>
 #include <memory>
 
-#include "reference/ode_engine.hpp"
 #include "reference/reference_contacts.hpp"
 #include "sim/collision/box.hpp"
 #include "sim/collision/box_box.hpp"
 #include "sim/collision/box_plane.hpp"
 #include "sim/collision/broadphase.hpp"
-#include "sim/world.hpp"
+#include "sim/solver/step_context.hpp"
 #include "validation/engine_factory.hpp"
 #include "validation/state_meter.hpp"
 #include "validation/wire_check.hpp"
@@ -72,8 +71,8 @@ void find_impacts(const std::vector<BodyContact>& contacts, const std::vector<Ri
 // outside in the same step for the same pair. (Its own approach speed is not used: it is measured
 // during the sequential passes, after other points' impulses have turned the body, so a box
 // landing flat at 4.45 m/s reads 4.88 m/s at its last corner.)
-void attach_impulses(const World& world, double dt, std::vector<ImpactEvent>& events) {
-  for (const CollisionEvent& e : world.events()) {
+void attach_impulses(const std::vector<CollisionEvent>& recorded, double dt, std::vector<ImpactEvent>& events) {
+  for (const CollisionEvent& e : recorded) {
     for (ImpactEvent& ev : events) {
       if (ev.body_a == e.body_a && ev.body_b == e.body_b && std::abs(ev.t - e.time) < 0.5 * dt) ev.impulse = e.impulse;
     }
@@ -121,8 +120,6 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   EngineRun run;
   run.engine = std::string(name);
   const std::unique_ptr<Engine> engine = make_engine(name, scene, settings.reference);
-  const auto* own = dynamic_cast<const World*>(engine.get());
-  const auto* ode = dynamic_cast<const OdeEngine*>(engine.get());
   const bool full = detail == RunDetail::Full;
   const double dt = scene.time.dt;
   const long steps = step_count(scene);
@@ -198,10 +195,10 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   run.final_states = states;
   run.final_t = static_cast<double>(steps) * dt;
   run.finite = std::all_of(states.begin(), states.end(), [](const BodyState& s) { return finite(s); });
-  run.engine_messages = ode ? ode->messages() : 0;
+  run.engine_messages = engine->messages();
   if (!full) return run;
 
-  if (own) attach_impulses(*own, dt, run.events);
+  if (const auto* recorded = engine->collision_events()) attach_impulses(*recorded, dt, run.events);
   run.wires = wires.reports();
   const std::vector<RigidBody> start = make_bodies(scene);
   set_body_states(posed, states);

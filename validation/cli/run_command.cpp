@@ -4,11 +4,10 @@
 #include <iostream>
 #include <limits>
 
-#include "reference/ode_engine.hpp"
 #include "sim/io/scene_loader.hpp"
 #include "validation/cli/commands.hpp"
 #include "validation/json_output.hpp"
-#include "sim/world.hpp"
+#include "sim/solver/step_context.hpp"
 #include "validation/engine_factory.hpp"
 #include "validation/state_meter.hpp"
 
@@ -26,8 +25,7 @@ nlohmann::json metrics_json(const FrameMetrics& m) {
 
 // Our solver's statistics of its last step: passes used and the residual (largest approaching
 // normal velocity, m/s) after each pass, for the convergence plots.
-nlohmann::json solver_json(const World& world) {
-  const StepStats& st = world.last_step_stats();
+nlohmann::json solver_json(const StepStats& st, std::size_t events) {
   nlohmann::json collision = nlohmann::json::array(), contact = nlohmann::json::array();
   for (int k = 0; k < st.collision_passes_used; ++k) collision.push_back(st.collision_residual[k]);
   for (int k = 0; k < st.contact_passes_used; ++k) contact.push_back(st.contact_residual[k]);
@@ -36,7 +34,7 @@ nlohmann::json solver_json(const World& world) {
           {"contact_residuals", contact},
           {"shock_levels", st.shock_levels},
           {"residual_after_shock", st.residual_after_shock},
-          {"collision_events", world.events().size()}};
+          {"collision_events", events}};
 }
 
 bool finite_state(const BodyState& s) {
@@ -123,13 +121,15 @@ int run_run(const RunOptions& options) {
   std::vector<BodyContact> contacts;
   nlohmann::json frames = nlohmann::json::array();
   StateMeter meter(scene);
-  const auto* own = dynamic_cast<const World*>(engine.get());
   auto add_frame = [&] {
     engine->body_states(states);
     engine->contacts(contacts);
     nlohmann::json frame = {{"t", engine->time()}, {"bodies", bodies_json(states)}, {"contacts", contacts.size()}};
     frame.update(metrics_json(meter.measure(states)));
-    if (own) frame["solver"] = solver_json(*own);
+    if (const StepStats* stats = engine->solver_stats()) {
+      const auto* events = engine->collision_events();
+      frame["solver"] = solver_json(*stats, events ? events->size() : 0);
+    }
     frames.push_back(std::move(frame));
   };
 
@@ -153,15 +153,15 @@ int run_run(const RunOptions& options) {
       blew_up = true;
     }
   }
-  if (const auto* ode = dynamic_cast<const OdeEngine*>(engine.get()); ode && ode->messages() > 0) {
-    std::cerr << "boxpile: note: ODE reported " << ode->messages() << " message(s); the last: "
-              << ode_messages().last << '\n';
+  if (engine->messages() > 0) {
+    std::cerr << "boxpile: note: " << engine->name() << " reported " << engine->messages() << " message(s); the last: "
+              << engine->last_message() << '\n';
   }
 
   if (record) {
     nlohmann::json events = nlohmann::json::array();
-    if (own) {
-      for (const CollisionEvent& e : own->events()) {
+    if (const auto* recorded = engine->collision_events()) {
+      for (const CollisionEvent& e : *recorded) {
         events.push_back({{"t", e.time}, {"body_a", states[e.body_a].name},
                           {"body_b", e.body_b == kGround ? std::string("ground") : states[e.body_b].name},
                           {"impulse", e.impulse}, {"approach_speed", e.approach_speed}});
