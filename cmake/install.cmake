@@ -28,17 +28,17 @@ foreach(folder sim reference validation)
 endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/boxpile.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/boxpile)
 
-# Data: every fixture, and whatever report or viewer assets the tree has (assets/ folders under
-# validation/ are installed as they are, so a new asset file needs no change here).
+# Data: every fixture, and the web assets of any report or viewer under validation/ (page
+# templates, scripts, styles, images), folder by folder: validation/replay/viewer.js goes to
+# P/share/boxpile/replay/viewer.js, and a new asset file needs no change here.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/fixtures DESTINATION ${BOXPILE_DATA_INSTALL_DIR})
-file(GLOB boxpile_asset_dirs LIST_DIRECTORIES true ${PROJECT_SOURCE_DIR}/validation/*/assets
-     ${PROJECT_SOURCE_DIR}/validation/assets ${PROJECT_SOURCE_DIR}/viewer)
-foreach(dir IN LISTS boxpile_asset_dirs)
-  if(IS_DIRECTORY ${dir})
+file(GLOB boxpile_validation_folders LIST_DIRECTORIES true ${PROJECT_SOURCE_DIR}/validation/*)
+foreach(dir IN LISTS boxpile_validation_folders)
+  file(GLOB_RECURSE assets ${dir}/*.html ${dir}/*.js ${dir}/*.css ${dir}/*.svg ${dir}/*.png)
+  if(IS_DIRECTORY ${dir} AND assets)
     get_filename_component(name ${dir} NAME)
-    get_filename_component(parent ${dir} DIRECTORY)
-    get_filename_component(parent ${parent} NAME)
-    install(DIRECTORY ${dir}/ DESTINATION ${BOXPILE_DATA_INSTALL_DIR}/${parent}/${name})
+    install(DIRECTORY ${dir}/ DESTINATION ${BOXPILE_DATA_INSTALL_DIR}/${name}
+      FILES_MATCHING PATTERN "*.html" PATTERN "*.js" PATTERN "*.css" PATTERN "*.svg" PATTERN "*.png")
   endif()
 endforeach()
 
