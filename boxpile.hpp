@@ -13,19 +13,19 @@
 #pragma once
 
 // Scenes, bodies and the one Engine interface.
-#include "sim/engine.hpp"
-#include "sim/io/query_loader.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/io/query_loader.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/scene.hpp"
 // Contacts: the types, our detectors, ODE's and Bullet's, and the table of all of them by name.
-#include "reference/reference_contacts.hpp"
-#include "sim/collision/box.hpp"
-#include "sim/collision/box_box.hpp"
-#include "sim/collision/box_plane.hpp"
-#include "sim/collision/contact.hpp"
-#include "validation/detectors.hpp"
+#include "boxpile/reference/reference_contacts.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/validation/detectors.hpp"
 // Engines by name, comparing contact sets, and the judge of a collider.
-#include "validation/contact_diff.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/judge/check_collider.hpp"
-#include "validation/judge/judge.hpp"
+#include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/judge/check_collider.hpp"
+#include "boxpile/validation/judge/judge.hpp"

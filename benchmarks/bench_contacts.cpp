@@ -13,9 +13,9 @@
 #include <btBulletCollisionCommon.h>
 #include <ode/ode.h>
 
-#include "reference/reference_contacts.hpp"
-#include "sim/collision/box_box.hpp"
-#include "tests/support/geometry.hpp"
+#include "boxpile/reference/reference_contacts.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/tests/support/geometry.hpp"
 
 namespace boxpile {
 namespace {

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <string>
 
-#include "reference/settings.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "validation/engine_factory.hpp"
+#include "boxpile/reference/settings.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/engine_factory.hpp"
 
 namespace boxpile {
 namespace {

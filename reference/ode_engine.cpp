@@ -1,10 +1,10 @@
-#include "reference/ode_engine.hpp"
+#include "boxpile/reference/ode_engine.hpp"
 
 #include <cmath>
 #include <utility>
 
-#include "reference/ode_support.hpp"
-#include "sim/world.hpp"
+#include "boxpile/reference/ode_support.hpp"
+#include "boxpile/sim/world.hpp"
 
 namespace boxpile {
 

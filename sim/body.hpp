@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/math.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 

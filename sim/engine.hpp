@@ -8,8 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#include "sim/collision/collide.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/collision/collide.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 

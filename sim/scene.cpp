@@ -1,4 +1,4 @@
-#include "sim/scene.hpp"
+#include "boxpile/sim/scene.hpp"
 
 #include <algorithm>
 

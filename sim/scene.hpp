@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 

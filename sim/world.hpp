@@ -8,14 +8,14 @@
 #include <string_view>
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/collision/broadphase.hpp"
-#include "sim/collision/collide.hpp"
-#include "sim/engine.hpp"
-#include "sim/scene.hpp"
-#include "sim/solver/contact_method.hpp"
-#include "sim/solver/step_context.hpp"
-#include "sim/solver/wire.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/collision/broadphase.hpp"
+#include "boxpile/sim/collision/collide.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/scene.hpp"
+#include "boxpile/sim/solver/contact_method.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/sim/solver/wire.hpp"
 
 namespace boxpile {
 

@@ -14,12 +14,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/scene_loader.hpp"
-#include "validation/compare.hpp"
-#include "validation/report.hpp"
-#include "validation/report_directory.hpp"
-#include "validation/stacks.hpp"
-#include "validation/wire_check.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/report.hpp"
+#include "boxpile/validation/report_directory.hpp"
+#include "boxpile/validation/stacks.hpp"
+#include "boxpile/validation/wire_check.hpp"
 
 using namespace boxpile;
 using nlohmann::json;

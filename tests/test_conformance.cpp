@@ -23,17 +23,17 @@
 #include <string>
 #include <vector>
 
-#include "reference/bullet_engine.hpp"
-#include "reference/ode_engine.hpp"
-#include "reference/reference_contacts.hpp"
-#include "sim/collision/box_box.hpp"
-#include "sim/collision/box_plane.hpp"
-#include "sim/io/query_loader.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "tests/support/geometry.hpp"
-#include "validation/judge/judge.hpp"
-#include "validation/contact_diff.hpp"
-#include "validation/engine_factory.hpp"
+#include "boxpile/reference/bullet_engine.hpp"
+#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/reference/reference_contacts.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
+#include "boxpile/sim/io/query_loader.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/tests/support/geometry.hpp"
+#include "boxpile/validation/judge/judge.hpp"
+#include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/engine_factory.hpp"
 
 using namespace boxpile;
 using namespace boxpile::test;

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <string>
 
-#include "sim/collision/box_box.hpp"
-#include "validation/detectors.hpp"
-#include "validation/judge/check_collider.hpp"
-#include "validation/judge/judge.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/judge/check_collider.hpp"
+#include "boxpile/validation/judge/judge.hpp"
 
 using namespace boxpile;
 

@@ -1,4 +1,4 @@
-#include "validation/collider_process.hpp"
+#include "boxpile/validation/collider_process.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -9,7 +9,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "validation/json_output.hpp"
+#include "boxpile/validation/json_output.hpp"
 
 namespace boxpile {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <sys/types.h>
 
-#include "sim/io/query_loader.hpp"
+#include "boxpile/sim/io/query_loader.hpp"
 
 namespace boxpile {
 

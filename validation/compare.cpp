@@ -1,4 +1,4 @@
-#include "validation/compare.hpp"
+#include "boxpile/validation/compare.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,15 +7,15 @@
 #include <limits>
 #include <memory>
 
-#include "reference/reference_contacts.hpp"
-#include "sim/collision/box.hpp"
-#include "sim/collision/box_box.hpp"
-#include "sim/collision/box_plane.hpp"
-#include "sim/collision/broadphase.hpp"
-#include "sim/solver/step_context.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/state_meter.hpp"
-#include "validation/wire_check.hpp"
+#include "boxpile/reference/reference_contacts.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
+#include "boxpile/sim/collision/broadphase.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/state_meter.hpp"
+#include "boxpile/validation/wire_check.hpp"
 
 namespace boxpile {
 namespace {

@@ -11,12 +11,12 @@
 #include <string_view>
 #include <vector>
 
-#include "reference/settings.hpp"
-#include "sim/engine.hpp"
-#include "sim/metrics.hpp"
-#include "sim/scene.hpp"
-#include "validation/contact_diff.hpp"
-#include "validation/stacks.hpp"
+#include "boxpile/reference/settings.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/metrics.hpp"
+#include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/stacks.hpp"
 
 namespace boxpile {
 

@@ -1,9 +1,9 @@
-#include "validation/conform_report.hpp"
+#include "boxpile/validation/conform_report.hpp"
 
 #include <fstream>
 #include <sstream>
 
-#include "validation/json_output.hpp"
+#include "boxpile/validation/json_output.hpp"
 
 namespace boxpile {
 namespace {

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "validation/judge/check_collider.hpp"
+#include "boxpile/validation/judge/check_collider.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "validation/data_directory.hpp"
+#include "boxpile/validation/data_directory.hpp"
 
 #include <cstdlib>
 

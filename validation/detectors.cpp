@@ -1,11 +1,11 @@
-#include "validation/detectors.hpp"
+#include "boxpile/validation/detectors.hpp"
 
 #include <array>
 #include <string>
 
-#include "reference/reference_contacts.hpp"
-#include "sim/collision/box_box.hpp"
-#include "sim/collision/box_plane.hpp"
+#include "boxpile/reference/reference_contacts.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
 
 namespace boxpile {
 namespace {

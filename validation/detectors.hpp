@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "sim/collision/contact.hpp"
-#include "sim/io/query_loader.hpp"
-#include "validation/judge/check_collider.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/io/query_loader.hpp"
+#include "boxpile/validation/judge/check_collider.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "validation/json_output.hpp"
+#include "boxpile/validation/json_output.hpp"
 
 #include <cerrno>
 #include <cstdio>

@@ -5,10 +5,10 @@
 
 #include <vector>
 
-#include "sim/collision/contact.hpp"
-#include "sim/engine.hpp"
-#include "sim/io/query_loader.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/io/query_loader.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "validation/report.hpp"
+#include "boxpile/validation/report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "validation/json_output.hpp"
+#include "boxpile/validation/json_output.hpp"
 
 namespace boxpile {
 namespace {

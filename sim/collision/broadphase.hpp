@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "sim/body.hpp"
+#include "boxpile/sim/body.hpp"
 
 namespace boxpile {
 

@@ -4,9 +4,9 @@
 
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/collision/contact.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

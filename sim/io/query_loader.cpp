@@ -1,6 +1,6 @@
-#include "sim/io/query_loader.hpp"
+#include "boxpile/sim/io/query_loader.hpp"
 
-#include "sim/io/json_input.hpp"
+#include "boxpile/sim/io/json_input.hpp"
 
 namespace boxpile {
 namespace {

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "sim/collision/contact.hpp"
-#include "sim/io/input_error.hpp"
-#include "sim/math.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/math.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

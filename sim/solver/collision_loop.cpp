@@ -1,4 +1,4 @@
-#include "sim/solver/collision_loop.hpp"
+#include "boxpile/sim/solver/collision_loop.hpp"
 
 #include <algorithm>
 #include <cassert>

@@ -1,6 +1,6 @@
-#include "sim/solver/contact_method.hpp"
+#include "boxpile/sim/solver/contact_method.hpp"
 
-#include "sim/solver/impulse_method.hpp"
+#include "boxpile/sim/solver/impulse_method.hpp"
 
 namespace boxpile {
 

@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "sim/solver/impulse_step.hpp"
+#include "boxpile/sim/solver/impulse_step.hpp"
 
 namespace boxpile {
 

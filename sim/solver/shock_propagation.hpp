@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "sim/solver/impulse_step.hpp"
+#include "boxpile/sim/solver/impulse_step.hpp"
 
 namespace boxpile {
 

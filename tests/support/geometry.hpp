@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "sim/collision/box.hpp"
-#include "sim/collision/contact.hpp"
-#include "validation/judge/brute_force.hpp"
-#include "validation/judge/pose_sampler.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/validation/judge/brute_force.hpp"
+#include "boxpile/validation/judge/pose_sampler.hpp"
 
 namespace boxpile::test {
 

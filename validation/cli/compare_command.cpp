@@ -8,13 +8,13 @@
 #include <filesystem>
 #include <iostream>
 
-#include "sim/io/scene_loader.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/compare.hpp"
-#include "validation/data_directory.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/report.hpp"
-#include "validation/report_directory.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/data_directory.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/report.hpp"
+#include "boxpile/validation/report_directory.hpp"
 
 namespace boxpile::cli {
 namespace {

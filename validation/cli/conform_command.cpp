@@ -3,12 +3,12 @@
 #include <filesystem>
 #include <iostream>
 
-#include "validation/cli/commands.hpp"
-#include "validation/collider_process.hpp"
-#include "validation/conform_report.hpp"
-#include "validation/data_directory.hpp"
-#include "validation/judge/check_collider.hpp"
-#include "validation/report_directory.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/collider_process.hpp"
+#include "boxpile/validation/conform_report.hpp"
+#include "boxpile/validation/data_directory.hpp"
+#include "boxpile/validation/judge/check_collider.hpp"
+#include "boxpile/validation/report_directory.hpp"
 
 namespace boxpile::cli {
 namespace {

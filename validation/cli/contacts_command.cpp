@@ -6,11 +6,11 @@
 #include <string_view>
 #include <vector>
 
-#include "sim/io/query_loader.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/json_output.hpp"
-#include "validation/contact_diff.hpp"
-#include "validation/detectors.hpp"
+#include "boxpile/sim/io/query_loader.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/json_output.hpp"
+#include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/detectors.hpp"
 
 namespace boxpile::cli {
 namespace {

@@ -1,12 +1,12 @@
 // boxpile: run box-pile scenes in our simulator and in ODE and Bullet, and compare them.
 #include <iostream>
 
-#include "sim/io/input_error.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/collider_process.hpp"
-#include "validation/detectors.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/report_directory.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/collider_process.hpp"
+#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/report_directory.hpp"
 
 namespace {
 

@@ -4,12 +4,12 @@
 #include <iostream>
 #include <limits>
 
-#include "sim/io/scene_loader.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/json_output.hpp"
-#include "sim/solver/step_context.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/state_meter.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/json_output.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/state_meter.hpp"
 
 namespace boxpile::cli {
 namespace {

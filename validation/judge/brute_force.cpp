@@ -1,4 +1,4 @@
-#include "validation/judge/brute_force.hpp"
+#include "boxpile/validation/judge/brute_force.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,9 +7,9 @@
 #include <random>
 #include <vector>
 
-#include "sim/collision/box.hpp"
-#include "sim/collision/contact.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 

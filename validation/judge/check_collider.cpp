@@ -1,4 +1,4 @@
-#include "validation/judge/check_collider.hpp"
+#include "boxpile/validation/judge/check_collider.hpp"
 
 #include <algorithm>
 #include <filesystem>

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "sim/io/query_loader.hpp"
-#include "validation/judge/judge.hpp"
-#include "validation/judge/pose_sampler.hpp"
+#include "boxpile/sim/io/query_loader.hpp"
+#include "boxpile/validation/judge/judge.hpp"
+#include "boxpile/validation/judge/pose_sampler.hpp"
 
 namespace boxpile {
 

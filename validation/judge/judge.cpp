@@ -1,4 +1,4 @@
-#include "validation/judge/judge.hpp"
+#include "boxpile/validation/judge/judge.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "validation/judge/brute_force.hpp"
+#include "boxpile/validation/judge/brute_force.hpp"
 
 namespace boxpile {
 namespace {

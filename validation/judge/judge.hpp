@@ -11,9 +11,9 @@
 #include <string_view>
 #include <vector>
 
-#include "sim/collision/box.hpp"
-#include "sim/collision/contact.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

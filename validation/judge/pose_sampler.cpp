@@ -1,6 +1,6 @@
-#include "validation/judge/pose_sampler.hpp"
+#include "boxpile/validation/judge/pose_sampler.hpp"
 
-#include "validation/judge/brute_force.hpp"
+#include "boxpile/validation/judge/brute_force.hpp"
 
 #include <algorithm>
 #include <array>

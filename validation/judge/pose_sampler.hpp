@@ -8,8 +8,8 @@
 #include <span>
 #include <string_view>
 
-#include "sim/collision/box.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 
