@@ -10,41 +10,41 @@
 namespace boxpile {
 namespace {
 
-OrientedBox box_a(const ContactQuery& q) { return OrientedBox::from(q.a.pose, q.a.half_extents); }
-OrientedBox box_b(const ContactQuery& q) { return OrientedBox::from(q.b->pose, q.b->half_extents); }
-
-Manifold own(const ContactQuery& q, const DetectOptions& options) {
+Manifold own_box_box(const OrientedBox& a, const OrientedBox& b, const DetectOptions& options) {
   Manifold m;
-  if (q.b) {
-    CollisionSettings settings;
-    settings.reduce_to_four = options.reduce;
-    collide_box_box(box_a(q), box_b(q), settings, m);
-  } else {
-    collide_box_plane(box_a(q), *q.plane, 0.0, m);
-  }
+  collide_box_box(a, b, options.own, m);
   return m;
 }
 
-Manifold ode(const ContactQuery& q, const DetectOptions&) {
-  return q.b ? ode_box_box(box_a(q), box_b(q)) : ode_box_plane(box_a(q), *q.plane);
+Manifold own_box_plane(const OrientedBox& a, const HalfSpace& plane, const DetectOptions& options) {
+  Manifold m;
+  collide_box_plane(a, plane, options.plane_margin, m);
+  return m;
 }
 
-Manifold bullet(const ContactQuery& q, const DetectOptions&) {
-  return q.b ? bullet_box_box(box_a(q), box_b(q)) : bullet_box_plane(box_a(q), *q.plane);
-}
-
-Manifold bullet_multipoint(const ContactQuery& q, const DetectOptions&) {
-  return q.b ? bullet_box_box(box_a(q), box_b(q)) : bullet_box_plane(box_a(q), *q.plane, kBulletMultipoint);
+Manifold ode_pair(const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return ode_box_box(a, b); }
+Manifold ode_plane(const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return ode_box_plane(a, p); }
+Manifold bullet_pair(const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return bullet_box_box(a, b); }
+Manifold bullet_plane(const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return bullet_box_plane(a, p); }
+Manifold multipoint_plane(const OrientedBox& a, const HalfSpace& p, const DetectOptions&) {
+  return bullet_box_plane(a, p, kBulletMultipoint);
 }
 
 const std::array<DetectorInfo, 4> kDetectors = {{
-    {"own", "boxpile's separating-axis test with face clipping", false, &own},
-    {"ode", "ODE's dCollide (dBoxBox, box-plane)", false, &ode},
-    {"bullet", "Bullet's btBoxBoxDetector through a persistent manifold", false, &bullet},
-    {"bullet_multipoint", "Bullet with setPlaneConvexMultipointIterations(3, 3)", true, &bullet_multipoint},
+    {kOwnDetector, "boxpile's separating-axis test with face clipping", false, &own_box_box, &own_box_plane},
+    {"ode", "ODE's dCollide (dBoxBox, box-plane)", false, &ode_pair, &ode_plane},
+    {"bullet", "Bullet's btBoxBoxDetector through a persistent manifold", false, &bullet_pair, &bullet_plane},
+    {"bullet_multipoint", "Bullet with setPlaneConvexMultipointIterations(3, 3)", true, &bullet_pair,
+     &multipoint_plane},
 }};
 
 }  // namespace
+
+Manifold DetectorInfo::detect(const ContactQuery& q, const DetectOptions& options) const {
+  const OrientedBox a = OrientedBox::from(q.a.pose, q.a.half_extents);
+  if (q.plane) return box_plane(a, *q.plane, options);
+  return box_box(a, OrientedBox::from(q.b->pose, q.b->half_extents), options);
+}
 
 std::span<const DetectorInfo> detectors() { return kDetectors; }
 

@@ -7,22 +7,34 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/collide.hpp"
 #include "boxpile/sim/collision/contact.hpp"
 #include "boxpile/sim/io/query_loader.hpp"
 #include "boxpile/validation/judge/check_collider.hpp"
 
 namespace boxpile {
 
+// Settings of our detector (the references have none): its box-box settings (reduction to four
+// points, margin) and the margin of box-plane contacts, m.
 struct DetectOptions {
-  bool reduce = false;  // ours only: at most 4 box-box points
+  CollisionSettings own;
+  double plane_margin = 0.0;
 };
 
 struct DetectorInfo {
   std::string_view name;
   std::string_view description;
   bool box_plane_only;  // differs from another row on box-plane queries only
-  Manifold (*detect)(const ContactQuery& query, const DetectOptions& options);
+  Manifold (*box_box)(const OrientedBox& a, const OrientedBox& b, const DetectOptions& options);
+  Manifold (*box_plane)(const OrientedBox& a, const HalfSpace& plane, const DetectOptions& options);
+
+  // The query's boxes (or box and plane) through box_box or box_plane.
+  Manifold detect(const ContactQuery& query, const DetectOptions& options) const;
 };
+
+// The detector our engine uses, against which the others are compared.
+inline constexpr std::string_view kOwnDetector = "own";
 
 // The registered detectors, in the order help texts list them.
 std::span<const DetectorInfo> detectors();

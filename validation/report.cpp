@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "boxpile/validation/detectors.hpp"
 #include "boxpile/validation/json_output.hpp"
 
 namespace boxpile {
@@ -128,16 +129,21 @@ json contacts_json(const CompareResult& r, const ContactFrameCheck& c) {
   json worst = json::array();
   for (const ContactDisagreement& w : c.worst) {
     const ContactPairCheck& p = w.pair;
-    worst.push_back({{"metric", w.metric},
-                     {"reference", w.reference},
-                     {"value", w.value},
-                     {"body_a", body_name(r.scene, p.body_a)},
-                     {"shape_a", p.shape_a},
-                     {"body_b", body_name(r.scene, p.body_b)},
-                     {"shape_b", p.shape_b},
-                     {"points", {{"own", p.own_points}, {"ode", p.ode_points}, {"bullet", p.bullet_points}}},
-                     {"ode", diff_json(p.ode)},
-                     {"bullet", diff_json(p.bullet)}});
+    json entry = {{"metric", w.metric},
+                  {"reference", w.reference},
+                  {"value", w.value},
+                  {"body_a", body_name(r.scene, p.body_a)},
+                  {"shape_a", p.shape_a},
+                  {"body_b", body_name(r.scene, p.body_b)},
+                  {"shape_b", p.shape_b}};
+    // "points": every detector's count; then each other detector's diff against ours by its name.
+    json points = json::object();
+    for (const DetectorCheck& d : p.detectors) points[d.detector] = d.points;
+    entry["points"] = points;
+    for (const DetectorCheck& d : p.detectors) {
+      if (d.detector != kOwnDetector) entry[d.detector] = diff_json(d.diff);
+    }
+    worst.push_back(std::move(entry));
   }
   return {{"engine", c.engine}, {"why", c.why},     {"frame", c.frame},
           {"t", c.t},           {"pairs", c.pairs}, {"count_mismatches", c.count_mismatches},
@@ -454,7 +460,10 @@ void write_md_contact_check(std::ostream& md, const Scene& s, const ContactFrame
     md << "No disagreement above rounding (1e-9) in normals, deepest depths or contact regions.\n\n";
     return;
   }
-  md << "| largest | against | value | pair | points own / ode / bullet |\n|---|---|---:|---|---|\n";
+  const std::vector<DetectorCheck>& shown = c.worst.front().pair.detectors;
+  md << "| largest | against | value | pair | points";
+  for (std::size_t k = 0; k < shown.size(); ++k) md << (k ? " / " : " ") << shown[k].detector;
+  md << " |\n|---|---|---:|---|---|\n";
   for (const ContactDisagreement& w : c.worst) {
     const ContactPairCheck& pc = w.pair;
     const bool angle = w.metric == "normal_angle";
@@ -462,7 +471,9 @@ void write_md_contact_check(std::ostream& md, const Scene& s, const ContactFrame
        << " | "
        << body_name(s, pc.body_a) << "[" << pc.shape_a << "] / " << body_name(s, pc.body_b);
     if (pc.body_b != kGround) md << "[" << pc.shape_b << "]";
-    md << " | " << pc.own_points << " / " << pc.ode_points << " / " << pc.bullet_points << " |\n";
+    md << " |";
+    for (std::size_t k = 0; k < pc.detectors.size(); ++k) md << (k ? " / " : " ") << pc.detectors[k].points;
+    md << " |\n";
   }
   md << '\n';
 }

@@ -15,9 +15,15 @@
 namespace boxpile::cli {
 namespace {
 
-constexpr std::string_view kOwn = "own";
+constexpr std::string_view kOwn = kOwnDetector;
 constexpr const char* kTable = "table";
 constexpr const char* kJson = "json";
+
+DetectOptions detect_options(const ContactsOptions& options) {
+  DetectOptions d;
+  d.own.reduce_to_four = options.reduce;
+  return d;
+}
 
 std::vector<std::string> detector_names() {
   std::vector<std::string> names;
@@ -42,7 +48,7 @@ std::vector<std::pair<std::string, Manifold>> contact_sets(const ContactsOptions
   for (const std::string& name : names) {
     const bool listed_twice =
         std::any_of(sets.begin(), sets.end(), [&](const auto& s) { return s.first == name; });
-    if (!listed_twice) sets.emplace_back(name, find_detector(name).detect(query, DetectOptions{options.reduce}));
+    if (!listed_twice) sets.emplace_back(name, find_detector(name).detect(query, detect_options(options)));
   }
   for (const RecordedAnswer& r : query.answers) sets.emplace_back(r.detector + " (saved)", r.contacts);
   return sets;
@@ -142,7 +148,7 @@ int serve(const ContactsOptions& options) {
   for (int n = 1; std::getline(std::cin, line); ++n) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     const ContactQuery query = parse_query(line, "stdin line " + std::to_string(n));
-    std::cout << answer_json(detector.detect(query, DetectOptions{options.reduce})).dump() << std::endl;
+    std::cout << answer_json(detector.detect(query, detect_options(options))).dump() << std::endl;
   }
   return kExitOk;
 }
