@@ -31,9 +31,10 @@
 #include "boxpile/sim/io/query_loader.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/tests/support/geometry.hpp"
-#include "boxpile/validation/judge/judge.hpp"
 #include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/detectors.hpp"
 #include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/judge/judge.hpp"
 
 using namespace boxpile;
 using namespace boxpile::test;
@@ -132,9 +133,9 @@ class Dumper {
 
 // --- box-box ----------------------------------------------------------------------------------
 
+// A reference detector of the table (validation/detectors.hpp) and what we know of its sets.
 struct Reference {
   const char* name;
-  Manifold (*detect)(const OrientedBox&, const OrientedBox&);
   int max_points;
   bool merges_close_points;  // Bullet's persistent manifold merges points nearer than its threshold
 };
@@ -252,7 +253,7 @@ std::optional<Verdict> arbitrate(Mismatch m, const BoxPair& p, const Manifold& o
 
 void compare_box_box(const Reference& ref, const BoxPair& p, int k, const Manifold& own, const SatResult& sat,
                      Tally& t, Dumper& dump) {
-  const Manifold theirs = ref.detect(p.a, p.b);
+  const Manifold theirs = find_detector(ref.name).box_box(p.a, p.b, DetectOptions{});
   ++t.samples;
   auto record = [&](Mismatch m, const std::string& why) {
     ++t.mismatches[m];
@@ -302,8 +303,8 @@ void check_gates(const Tally& t, const MismatchGates& gates) {
 TEST_CASE("our box-box contacts agree with ODE and Bullet on random pairs", "[conformance][box_box]") {
   std::mt19937_64 rng(test_seed(11));
   const int n = test_samples(kDefaultSamples);
-  const Reference ode{"ode", &ode_box_box, kMaxManifoldPoints, false};
-  const Reference bullet{"bullet", &bullet_box_box, 4, true};
+  const Reference ode{"ode", kMaxManifoldPoints, false};
+  const Reference bullet{"bullet", 4, true};
   Tally ode_tally, bullet_tally;
   Dumper dump;
   for (int k = 0; k < n; ++k) {
