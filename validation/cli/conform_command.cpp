@@ -15,6 +15,8 @@ namespace {
 
 // `--cases none` judges random pairs only.
 constexpr const char* kNoCases = "none";
+// More pairs than a day of a slow collider's answers is a typo.
+constexpr int kMaxSamples = 100'000'000;
 
 std::vector<std::string> regime_names() {
   std::vector<std::string> names;
@@ -51,7 +53,7 @@ void add_conform_command(CLI::App& app, ConformOptions& options) {
                   "Command that reads one query per line on stdin and writes one answer per line "
                   "(run through /bin/sh)")
       ->required();
-  cmd->add_option("--samples", options.samples, "Random pose pairs")->check(CLI::NonNegativeNumber)->capture_default_str();
+  cmd->add_option("--samples", options.samples, "Random pose pairs")->check(CLI::Range(0, kMaxSamples))->capture_default_str();
   cmd->add_option("--seed", options.seed, "Seed of the random pose pairs")->capture_default_str();
   cmd->add_option("--cases", options.cases,
                   "Folder of contact queries judged first (default: the installed fixtures/contacts; \"none\": "
