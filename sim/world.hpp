@@ -31,6 +31,10 @@ class World final : public Engine {
   void contacts(std::vector<BodyContact>& out) const override { out = contacts_; }
   const std::vector<CollisionEvent>* collision_events() const override { return &events_; }
   const StepStats* solver_stats() const override { return &stats_; }
+  const WorldCounters* solver_counters() const override { return &counters_; }
+  std::string_view contact_method() const override {
+    return scene_.solver.method == ContactSolver::Penalty ? "penalty" : "impulse";
+  }
 
   const std::vector<RigidBody>& bodies() const { return bodies_; }
   std::vector<RigidBody>& bodies() { return bodies_; }

@@ -1,6 +1,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <iostream>
 #include <string_view>
@@ -16,6 +17,14 @@ namespace boxpile::cli {
 namespace {
 
 constexpr std::string_view kOwn = kOwnDetector;
+// own-impulse and own-penalty name our engine with a forced contact method; the contact set is the
+// same for both, so they are "own" here.
+constexpr std::array<std::string_view, 2> kOwnAliases = {"own-impulse", "own-penalty"};
+
+std::string detector_of(const std::string& name) {
+  const bool alias = std::find(kOwnAliases.begin(), kOwnAliases.end(), name) != kOwnAliases.end();
+  return alias ? std::string(kOwn) : name;
+}
 constexpr const char* kTable = "table";
 constexpr const char* kJson = "json";
 
@@ -28,6 +37,7 @@ DetectOptions detect_options(const ContactsOptions& options) {
 std::vector<std::string> detector_names() {
   std::vector<std::string> names;
   for (const DetectorInfo& d : detectors()) names.emplace_back(d.name);
+  names.insert(names.begin() + 1, kOwnAliases.begin(), kOwnAliases.end());
   return names;
 }
 
@@ -45,7 +55,8 @@ std::vector<std::string> default_detectors(const ContactQuery& query) {
 std::vector<std::pair<std::string, Manifold>> contact_sets(const ContactsOptions& options, const ContactQuery& query) {
   std::vector<std::string> names = options.engines.empty() ? default_detectors(query) : options.engines;
   std::vector<std::pair<std::string, Manifold>> sets;
-  for (const std::string& name : names) {
+  for (const std::string& listed : names) {
+    const std::string name = detector_of(listed);
     const bool listed_twice =
         std::any_of(sets.begin(), sets.end(), [&](const auto& s) { return s.first == name; });
     if (!listed_twice) sets.emplace_back(name, find_detector(name).detect(query, detect_options(options)));
@@ -143,7 +154,7 @@ void print_table(const ContactsOptions& options, const ContactQuery& query, cons
 // The line protocol: a query per input line, an answer per output line, flushed at once (the
 // other side waits for it). Blank lines are skipped.
 int serve(const ContactsOptions& options) {
-  const DetectorInfo& detector = find_detector(options.engine);
+  const DetectorInfo& detector = find_detector(detector_of(options.engine));
   std::string line;
   for (int n = 1; std::getline(std::cin, line); ++n) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
@@ -161,8 +172,9 @@ void add_contacts_command(CLI::App& app, ContactsOptions& options) {
   CLI::Option* query = cmd->add_option("query", options.query, "Query file (JSON): boxes a and b, or box a and a plane");
   cmd->add_flag("--reduce", options.reduce, "Reduce our box-box manifold to at most 4 points");
   cmd->add_option("--engines", options.engines,
-                  "Comma-separated detectors to show (default: own, ode, bullet, and bullet_multipoint for a "
-                  "box-plane query); each is compared with own when own is shown")
+                  "Comma-separated detectors to show (own-impulse and own-penalty are own: one detector; "
+                  "default: own, ode, bullet, and bullet_multipoint for a box-plane query); each is compared "
+                  "with own when own is shown")
       ->delimiter(',')
       ->check(CLI::IsMember(detector_names()));
   cmd->add_option("--format", options.format, "Output: table (the default on a terminal) or json (when piped)")
