@@ -13,6 +13,7 @@
 #include "boxpile/sim/collision/collide.hpp"
 #include "boxpile/sim/engine.hpp"
 #include "boxpile/sim/scene.hpp"
+#include "boxpile/sim/step_storage.hpp"
 #include "boxpile/sim/solver/contact_method.hpp"
 #include "boxpile/sim/solver/step_context.hpp"
 #include "boxpile/sim/solver/wire.hpp"
@@ -55,6 +56,7 @@ class World final : public Engine {
   double time_ = 0.0;
 
   SweepAndPrune broadphase_;
+  PlacedBoxes placed_;  // every body's boxes in the world, placed once per contact search
   std::vector<BodyContact> contacts_;
   std::vector<WireJoint> wires_;
   std::unique_ptr<ContactMethod> method_;

@@ -16,6 +16,7 @@
 #include "boxpile/sim/metrics.hpp"
 #include "boxpile/sim/scene.hpp"
 #include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/recording.hpp"
 #include "boxpile/validation/stacks.hpp"
 
 namespace boxpile {
@@ -61,16 +62,6 @@ struct ImpactEvent {
   std::optional<double> impulse;  // N s
 };
 
-// Recorded frames of one run: time, states and measurements at each.
-struct FrameSeries {
-  std::vector<double> t;
-  std::vector<std::vector<BodyState>> states;
-  std::vector<double> energy;        // J, total
-  std::vector<double> penetration;   // m, deepest
-  std::vector<double> levitation;    // m
-  std::vector<double> stack_height;  // m, the tallest stack (0 when none)
-};
-
 // How well a body on a wire stayed on it through a run (every step measured).
 struct WireReport {
   std::string body;
@@ -85,7 +76,9 @@ struct EngineRun {
   long steps = 0;
   double wall_seconds = 0.0;  // stepping only
   double us_per_step = 0.0;
-  FrameSeries frames;
+  // The recorded frames (CompareSettings::frame_rate), the bodies' shapes and the contact sets;
+  // `recording.stopped` says where a run that blew up stopped.
+  Recording recording;
   std::vector<BodyState> final_states;
   double final_t = 0.0;
   // Measured at every step.
@@ -98,7 +91,7 @@ struct EngineRun {
   std::vector<ImpactEvent> events;
   std::vector<StackReport> stacks;  // at the end
   std::vector<WireReport> wires;
-  bool finite = true;  // every state finite at the end
+  bool finite = true;  // every state finite to the end (the run stops at the first that is not)
   std::uint64_t engine_messages = 0;  // ODE's messages during the run
 };
 

@@ -8,6 +8,7 @@
 #include "boxpile/sim/solver/impulse.hpp"
 #include "boxpile/sim/solver/recovery.hpp"
 #include "boxpile/sim/solver/shock_propagation.hpp"
+#include "boxpile/sim/step_storage.hpp"
 
 namespace boxpile {
 

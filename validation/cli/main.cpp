@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
   add_compare_command(app, compare);
   ConformOptions conform;
   add_conform_command(app, conform);
+  ViewOptions view;
+  add_view_command(app, view);
 
   try {
     app.parse(argc, argv);
@@ -53,6 +55,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) return run_run(run);
     if (app.got_subcommand("compare")) return run_compare_command(compare);
     if (app.got_subcommand("conform")) return run_conform_command(conform);
+    if (app.got_subcommand("view")) return run_view(view);
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());

@@ -1,14 +1,15 @@
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <limits>
 
 #include "boxpile/sim/io/scene_loader.hpp"
-#include "boxpile/validation/cli/commands.hpp"
-#include "boxpile/validation/json_output.hpp"
 #include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/json_output.hpp"
+#include "boxpile/validation/recording.hpp"
+#include "boxpile/validation/run_loop.hpp"
 #include "boxpile/validation/state_meter.hpp"
 
 namespace boxpile::cli {
@@ -16,12 +17,6 @@ namespace {
 
 // Up to this many bodies the human summary lists each one; above it, the extremes only.
 constexpr std::size_t kSummaryBodyLimit = 10;
-
-nlohmann::json metrics_json(const FrameMetrics& m) {
-  return {{"energy", {{"kinetic", m.energy.kinetic()}, {"potential", m.energy.potential}, {"total", m.energy.total()}}},
-          {"max_penetration", m.penetration.depth},
-          {"levitation", m.levitation}};
-}
 
 // Our solver's statistics of its last step. Impulse method: passes used and the residual
 // (largest approaching normal velocity, m/s) after each pass, for the convergence plots. Penalty
@@ -46,11 +41,6 @@ nlohmann::json solver_json(std::string_view method, const StepStats& st, const W
           {"shock_levels", st.shock_levels},
           {"residual_after_shock", st.residual_after_shock},
           {"collision_events", events}};
-}
-
-bool finite_state(const BodyState& s) {
-  return s.position.allFinite() && s.orientation.coeffs().allFinite() && s.velocity.allFinite() &&
-         s.angular_velocity.allFinite();
 }
 
 std::string format(double x, const char* fmt = "%.6g") {
@@ -128,43 +118,28 @@ int run_run(const RunOptions& options) {
   const std::unique_ptr<Engine> engine = make_engine(options.engine, scene, settings);
   const bool record = !options.out.empty();
 
-  std::vector<BodyState> states;
-  std::vector<BodyContact> contacts;
-  nlohmann::json frames = nlohmann::json::array();
-  StateMeter meter(scene);
-  auto add_frame = [&] {
-    engine->body_states(states);
-    engine->contacts(contacts);
-    nlohmann::json frame = {{"t", engine->time()}, {"bodies", bodies_json(states)}, {"contacts", contacts.size()}};
-    frame.update(metrics_json(meter.measure(states)));
-    const StepStats* stats = engine->solver_stats();
-    const WorldCounters* counters = engine->solver_counters();
-    if (stats && counters) {
-      const auto* events = engine->collision_events();
-      frame["solver"] = solver_json(engine->contact_method(), *stats, *counters, events ? events->size() : 0);
-    }
-    frames.push_back(std::move(frame));
-  };
-
-  using Clock = std::chrono::steady_clock;
-  Clock::duration stepping{};
-  bool blew_up = false;
-  if (record) add_frame();
-  for (long k = 1; k <= steps; ++k) {
-    const Clock::time_point start = Clock::now();
-    engine->step();
-    stepping += Clock::now() - start;
-    if (record && k % options.every == 0) add_frame();
+  Recorder recorder(scene, options.engine);
+  std::vector<nlohmann::json> solver;  // our solver's statistics, per frame
+  RunHooks hooks;
+  if (record) {
+    hooks.frame = [&](const StepView& v) {
+      recorder.frame(v);
+      const StepStats* stats = engine->solver_stats();
+      const WorldCounters* counters = engine->solver_counters();
+      if (stats && counters) {
+        const auto* events = engine->collision_events();
+        solver.push_back({{"solver", solver_json(engine->contact_method(), *stats, *counters,
+                                                 events ? events->size() : 0)}});
+      }
+    };
   }
-  const double wall = std::chrono::duration<double>(stepping).count();
+  const RunLoopResult loop = run_loop(*engine, dt, steps, options.every, hooks);
+  const std::vector<BodyState>& states = loop.final_states;
 
-  engine->body_states(states);
-  engine->contacts(contacts);
-  for (const BodyState& s : states) {
-    if (!finite_state(s)) {
-      std::cerr << "boxpile: warning: body \"" << s.name << "\" has a non-finite state at the end\n";
-      blew_up = true;
-    }
+  if (loop.stopped) {
+    std::cerr << "boxpile: error: " << loop.stopped->quantity << " of body \"" << loop.stopped->body
+              << "\" is not finite after step " << loop.stopped->step << " (t = " << format(loop.stopped->t)
+              << " s): the run stopped there\n";
   }
   if (engine->messages() > 0) {
     std::cerr << "boxpile: note: " << engine->name() << " reported " << engine->messages() << " message(s); the last: "
@@ -172,6 +147,7 @@ int run_run(const RunOptions& options) {
   }
 
   if (record) {
+    recorder.recording().stopped = loop.stopped;
     nlohmann::json events = nlohmann::json::array();
     if (const auto* recorded = engine->collision_events()) {
       for (const CollisionEvent& e : *recorded) {
@@ -180,23 +156,23 @@ int run_run(const RunOptions& options) {
                           {"impulse", e.impulse}, {"approach_speed", e.approach_speed}});
       }
     }
-    const nlohmann::json doc = {{"scene", scene.name},
-                                {"engine", options.engine},
-                                {"dt", dt},
-                                {"steps", steps},
-                                {"wall_seconds", wall},
-                                {"frames", std::move(frames)},
-                                {"final", {{"t", engine->time()}, {"bodies", bodies_json(states)}}},
-                                {"events", std::move(events)}};
+    nlohmann::json doc = recording_json(recorder.recording(), solver);
+    doc["steps"] = loop.steps;
+    doc["wall_seconds"] = loop.wall_seconds;
+    doc["final"] = {{"t", loop.final_t}, {"bodies", bodies_json(states)}};
+    doc["events"] = std::move(events);
     write_json_file(doc, options.out);
   } else {
-    print_summary(scene, options.engine, steps, wall, states, contacts.size());
+    std::vector<BodyContact> contacts;
+    engine->contacts(contacts);
+    print_summary(scene, options.engine, loop.steps, loop.wall_seconds, states, contacts.size());
+    StateMeter meter(scene);
     const FrameMetrics m = meter.measure(states);
     std::cout << "energy " << format(m.energy.total(), "%.6g") << " J (kinetic " << format(m.energy.kinetic(), "%.3g")
               << " J), deepest penetration " << format(m.penetration.depth, "%.3g") << " m, levitation "
               << format(m.levitation, "%.3g") << " m\n";
   }
-  return blew_up ? kExitFailure : kExitOk;
+  return loop.stopped ? kExitFailure : kExitOk;
 }
 
 }  // namespace boxpile::cli
