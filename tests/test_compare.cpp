@@ -14,13 +14,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/scene_loader.hpp"
-#include "validation/compare.hpp"
-#include "validation/report.hpp"
-#include "validation/report_directory.hpp"
-#include "validation/stacks.hpp"
-#include "validation/wire_check.hpp"
-#include "tests/support/work_dir.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/report.hpp"
+#include "boxpile/validation/report_directory.hpp"
+#include "boxpile/validation/stacks.hpp"
+#include "boxpile/validation/wire_check.hpp"
+#include "boxpile/tests/support/work_dir.hpp"
 
 using namespace boxpile;
 using namespace boxpile::test;
@@ -29,7 +29,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Every key the issue fixes for other tools, present with the right type.
+// Every key docs/compare.md fixes for other tools, present with the right type.
 void check_report_keys(const json& r, const std::vector<std::string>& engines) {
   CHECK(r.at("scene").is_string());
   CHECK(r.at("dt").is_number());

@@ -9,14 +9,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/input_error.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/engine_settings.hpp"
-#include "validation/pareto.hpp"
-#include "validation/sweep_grid.hpp"
-#include "validation/sweep_report.hpp"
-#include "validation/sweep_runner.hpp"
-#include "tests/support/work_dir.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/engine_settings.hpp"
+#include "boxpile/validation/pareto.hpp"
+#include "boxpile/validation/sweep_grid.hpp"
+#include "boxpile/validation/sweep_report.hpp"
+#include "boxpile/validation/sweep_runner.hpp"
+#include "boxpile/tests/support/work_dir.hpp"
 
 using namespace boxpile;
 using namespace boxpile::test;

@@ -1,13 +1,13 @@
-#include "validation/engine_settings.hpp"
+#include "boxpile/validation/engine_settings.hpp"
 
 #include <algorithm>
 #include <array>
 #include <limits>
 #include <vector>
 
-#include "sim/solver/step_context.hpp"
-#include "sim/io/input_error.hpp"
-#include "validation/engine_factory.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/validation/engine_factory.hpp"
 
 namespace boxpile {
 namespace {

@@ -11,9 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "reference/settings.hpp"
-#include "sim/io/json_input.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/reference/settings.hpp"
+#include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

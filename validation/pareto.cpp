@@ -1,4 +1,4 @@
-#include "validation/pareto.hpp"
+#include "boxpile/validation/pareto.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "validation/report_directory.hpp"
+#include "boxpile/validation/report_directory.hpp"
 
 #include <fcntl.h>
 #include <stdio.h>  // renameat2 (glibc 2.28)

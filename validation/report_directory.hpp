@@ -20,8 +20,8 @@ class ReportDirectoryError : public std::runtime_error {
 class ReportDirectory {
  public:
   // Checks `target` and creates the staging directory (and any missing parents of `target`).
-  // An existing `target` is accepted only if it is empty or holds `marker`, the file that marks
-  // this kind of report (it will be replaced); anything else is refused rather than deleted.
+  // An existing `target` is accepted only if it is empty or holds `marker`, the one file that
+  // marks a boxpile report (it will be replaced); anything else is refused rather than deleted.
   explicit ReportDirectory(std::filesystem::path target, std::string marker = "report.json");
   ~ReportDirectory();
   ReportDirectory(const ReportDirectory&) = delete;
@@ -37,8 +37,8 @@ class ReportDirectory {
 
  private:
   std::filesystem::path target_;
-  std::string marker_;
   std::filesystem::path staging_;
+  std::string marker_;
   bool committed_ = false;
 };
 

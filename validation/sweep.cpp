@@ -1,4 +1,4 @@
-#include "validation/sweep.hpp"
+#include "boxpile/validation/sweep.hpp"
 
 #include <unistd.h>
 
@@ -9,10 +9,10 @@
 #include <limits>
 #include <thread>
 
-#include "sim/world.hpp"
-#include "validation/compare.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/engine_settings.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/engine_settings.hpp"
 
 namespace boxpile {
 namespace {
@@ -75,14 +75,15 @@ class ConvergenceMeter {
 // `meter` when given.
 double timed_run(const EngineConfig& config, const std::string& engine, long steps, ConvergenceMeter* meter) {
   const std::unique_ptr<Engine> e = make_engine(engine, config.scene, config.reference);
-  const auto* own = dynamic_cast<const World*>(e.get());
   using Clock = std::chrono::steady_clock;
   Clock::duration stepping{};
   for (long k = 0; k < steps; ++k) {
     const Clock::time_point start = Clock::now();
     e->step();
     stepping += Clock::now() - start;
-    if (meter && own) meter->add(own->last_step_stats());
+    if (meter) {
+      if (const StepStats* stats = e->solver_stats()) meter->add(*stats);
+    }
   }
   return std::chrono::duration<double>(stepping).count();
 }

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "validation/sweep_grid.hpp"
-#include "validation/sweep_measures.hpp"
+#include "boxpile/validation/sweep_grid.hpp"
+#include "boxpile/validation/sweep_measures.hpp"
 
 namespace boxpile {
 

@@ -1,12 +1,12 @@
-#include "validation/sweep_grid.hpp"
+#include "boxpile/validation/sweep_grid.hpp"
 
 #include <filesystem>
 #include <stdexcept>
 
-#include "sim/io/json_input.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/engine_settings.hpp"
+#include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/engine_settings.hpp"
 
 namespace boxpile {
 namespace {

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/scene.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

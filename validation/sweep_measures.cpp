@@ -1,4 +1,4 @@
-#include "validation/sweep_measures.hpp"
+#include "boxpile/validation/sweep_measures.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/scene.hpp"
-#include "validation/compare.hpp"
+#include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/compare.hpp"
 
 namespace boxpile {
 

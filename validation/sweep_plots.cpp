@@ -1,11 +1,11 @@
-#include "validation/sweep_plots.hpp"
+#include "boxpile/validation/sweep_plots.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 
-#include "validation/plots.hpp"
-#include "validation/sweep_report.hpp"
+#include "boxpile/validation/plots.hpp"
+#include "boxpile/validation/sweep_report.hpp"
 
 namespace boxpile {
 namespace {

@@ -1,4 +1,4 @@
-#include "validation/sweep_report.hpp"
+#include "boxpile/validation/sweep_report.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -8,10 +8,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_input.hpp"
-#include "validation/pareto.hpp"
-#include "validation/sweep_plots.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/validation/pareto.hpp"
+#include "boxpile/validation/sweep_plots.hpp"
 
 namespace boxpile {
 namespace {

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "validation/sweep.hpp"
+#include "boxpile/validation/sweep.hpp"
 
 namespace boxpile {
 

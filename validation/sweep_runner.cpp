@@ -1,4 +1,4 @@
-#include "validation/sweep_runner.hpp"
+#include "boxpile/validation/sweep_runner.hpp"
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "validation/cli/json_output.hpp"
+#include "boxpile/validation/json_output.hpp"
 
 namespace boxpile {
 namespace {

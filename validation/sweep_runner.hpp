@@ -6,7 +6,7 @@
 #include <functional>
 #include <vector>
 
-#include "validation/sweep.hpp"
+#include "boxpile/validation/sweep.hpp"
 
 namespace boxpile {
 

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "sim/io/scene_loader.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
 
 namespace boxpile::test {
 

@@ -7,13 +7,13 @@
 #include <map>
 #include <set>
 
-#include "sim/io/input_error.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/cli/interrupt.hpp"
-#include "validation/engine_settings.hpp"
-#include "validation/report_directory.hpp"
-#include "validation/sweep_report.hpp"
-#include "validation/sweep_runner.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/interrupt.hpp"
+#include "boxpile/validation/engine_settings.hpp"
+#include "boxpile/validation/report_directory.hpp"
+#include "boxpile/validation/sweep_report.hpp"
+#include "boxpile/validation/sweep_runner.hpp"
 
 namespace boxpile::cli {
 namespace {
