@@ -140,6 +140,7 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   const double speed = event_speed(scene);
 
   StateMeter meter(scene);
+  RunMonitor monitor(scene);
   WireWatch wires(scene);
   std::vector<RigidBody> posed = make_bodies(scene);
   std::vector<BodyState> states, before;
@@ -147,6 +148,7 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
 
   auto measure_step = [&](double t) {
     if (!full) return;
+    monitor.observe(std::lround(t / dt), states);
     const FrameMetrics m = meter.measure_step(states);
     const double e = m.energy.total();
     if (t == 0.0) run.energy_initial = run.energy_max = e;
@@ -211,6 +213,8 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   run.engine_messages = ode ? ode->messages() : 0;
   if (!full) return run;
 
+  run.measures = monitor.measures();
+  run.checks = monitor.evaluate();
   if (own) attach_impulses(*own, dt, run.events);
   run.wires = wires.reports();
   const std::vector<RigidBody> start = make_bodies(scene);
@@ -468,6 +472,14 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
         if (t && (!p.chaos_time || *t < *p.chaos_time)) p.chaos_time = t;
       }
       p.verdict = verdict(p.difference, p.chaos_time);
+      const CheckResult* unstable_i = first_instability(result.runs[i].checks);
+      const CheckResult* unstable_j = first_instability(result.runs[j].checks);
+      if ((unstable_i == nullptr) != (unstable_j == nullptr)) {
+        const CheckResult& failed = unstable_i ? *unstable_i : *unstable_j;
+        p.verdict = "unstable";
+        p.unstable_engine = unstable_i ? names[i] : names[j];
+        p.instability = describe(failed);
+      }
       result.pairs.push_back(std::move(p));
     }
   }

@@ -119,6 +119,8 @@ json pair_json(const CompareResult& r, const PairComparison& p) {
           {"orientation_passes", optional_number(d.orientation_passes)},
           {"chaos_time", optional_number(p.chaos_time)},
           {"verdict", p.verdict},
+          {"unstable_engine", p.unstable_engine.empty() ? json(nullptr) : json(p.unstable_engine)},
+          {"instability", p.instability.empty() ? json(nullptr) : json(p.instability)},
           {"t", d.t},
           {"max_position", d.max_position},
           {"bodies", bodies}};
@@ -264,10 +266,13 @@ std::string pair_line(const PairComparison& p, double threshold) {
   s += p.chaos_time ? "; engines diverge from themselves by " + seconds(*p.chaos_time)
                     : std::string("; neither diverges from itself that far");
   s += "; verdict: " + p.verdict;
+  if (p.verdict == "unstable") s += " (" + p.unstable_engine + ": " + p.instability + ")";
   return s;
 }
 
-std::string verdict_text(const std::string& verdict) {
+std::string verdict_text(const PairComparison& p) {
+  const std::string& verdict = p.verdict;
+  if (verdict == "unstable") return p.unstable_engine + " is unstable (" + p.instability + "), the other is not";
   if (verdict == "agree") return "agree within the threshold";
   if (verdict == "chaos") return "differ no sooner than chaos explains";
   return "differ before chaos explains it";
@@ -407,7 +412,7 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
          << d.largest_position_body
          << ") | " << fmt(d.largest_orientation, "%.3g") << " rad (" << d.largest_orientation_body << ") | "
          << optional_seconds(d.position_passes) << " | " << optional_seconds(p.chaos_time) << " | "
-         << verdict_text(p.verdict) << " |\n";
+         << verdict_text(p) << " |\n";
     }
     md << "\nA pair *differs* when its position difference passes the threshold earlier than half the time "
           "either engine takes to pass it against its own perturbed run; later than that, chaos "

@@ -16,14 +16,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The one file that marks a directory as a boxpile report (and so safe to replace).
-constexpr const char* kMarker = "report.json";
-
 [[noreturn]] void refuse(const fs::path& target, const std::string& why) {
   throw ReportDirectoryError("report directory " + target.string() + ": " + why);
 }
 
-void check_target(const fs::path& target) {
+void check_target(const fs::path& target, const std::string& marker) {
   std::error_code ec;
   const fs::file_status st = fs::symlink_status(target, ec);
   if (ec && ec != std::errc::no_such_file_or_directory) refuse(target, ec.message());
@@ -31,19 +28,20 @@ void check_target(const fs::path& target) {
   if (!fs::is_directory(st)) refuse(target, "exists and is not a directory");
   const bool empty = fs::is_empty(target, ec);
   if (ec) refuse(target, ec.message());
-  if (!empty && !fs::exists(target / kMarker)) {
-    refuse(target, "exists and holds no report.json: not a boxpile report, so it is left alone; "
+  if (!empty && !fs::exists(target / marker)) {
+    refuse(target, "exists and holds no " + marker + ": not a boxpile report, so it is left alone; "
                    "choose another directory");
   }
 }
 
 }  // namespace
 
-ReportDirectory::ReportDirectory(fs::path target) : target_(std::move(target)) {
+ReportDirectory::ReportDirectory(fs::path target, const std::string& marker)
+    : target_(std::move(target)), marker_(marker) {
   if (target_.empty()) refuse(target_, "no directory given");
   // "out/" names the directory "out": drop the trailing separator, so that its parent is found.
   if (!target_.has_filename()) target_ = target_.parent_path();
-  check_target(target_);
+  check_target(target_, marker_);
   const fs::path parent = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
   std::error_code ec;
   fs::create_directories(parent, ec);
@@ -72,7 +70,7 @@ ReportDirectory::~ReportDirectory() {
 }
 
 void ReportDirectory::commit() {
-  check_target(target_);  // it may have changed during the run
+  check_target(target_, marker_);  // it may have changed during the run
   std::error_code ec;
   if (!fs::exists(target_, ec)) {
     fs::rename(staging_, target_, ec);

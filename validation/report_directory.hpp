@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 
 namespace boxpile {
 
@@ -19,9 +20,10 @@ class ReportDirectoryError : public std::runtime_error {
 class ReportDirectory {
  public:
   // Checks `target` and creates the staging directory (and any missing parents of `target`).
-  // An existing `target` is accepted only if it is empty or holds a report.json (it will be
-  // replaced); anything else is refused rather than deleted.
-  explicit ReportDirectory(std::filesystem::path target);
+  // An existing `target` is accepted only if it is empty or holds `marker`, the file that marks
+  // a boxpile report of this kind (it will be replaced); anything else is refused rather than
+  // deleted.
+  explicit ReportDirectory(std::filesystem::path target, const std::string& marker = "report.json");
   ~ReportDirectory();
   ReportDirectory(const ReportDirectory&) = delete;
   ReportDirectory& operator=(const ReportDirectory&) = delete;
@@ -37,6 +39,7 @@ class ReportDirectory {
  private:
   std::filesystem::path target_;
   std::filesystem::path staging_;
+  std::string marker_;
   bool committed_ = false;
 };
 

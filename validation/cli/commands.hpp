@@ -57,4 +57,14 @@ int run_compare_command(const CompareOptions& options);
 // The scene and report directory of `boxpile` with no command.
 CompareOptions default_compare_options();
 
+// `boxpile stability [--engines LIST] [--scenes FILE|DIR ...] [--report DIR]`: the catalogue of
+// hard scenes in each engine, every run judged by its scene's checks; a report directory.
+struct StabilityOptions {
+  std::vector<std::string> engines;  // empty: own, ode, bullet
+  std::vector<std::string> scenes;   // empty: the catalogue (fixtures/hard/)
+  std::string report = "boxpile-stability";
+};
+void add_stability_command(CLI::App& app, StabilityOptions& options);
+int run_stability_command(const StabilityOptions& options);
+
 }  // namespace boxpile::cli

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "sim/io/scene_loader.hpp"
 #include "validation/cli/commands.hpp"
+#include "validation/cli/interrupt.hpp"
 #include "validation/compare.hpp"
 #include "validation/engine_factory.hpp"
 #include "validation/report.hpp"
@@ -17,34 +17,6 @@
 
 namespace boxpile::cli {
 namespace {
-
-// Ctrl-C (or SIGTERM) during the runs: the next progress call stops the comparison by an exception,
-// so that the staging directory is removed on the way out and no report, not even a partial one,
-// is left behind.
-volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_interrupt(int) { g_interrupted = 1; }
-
-struct Interrupted {};
-
-// Installs the handler for its lifetime and restores the previous one.
-class InterruptGuard {
- public:
-  InterruptGuard() {
-    g_interrupted = 0;
-    previous_int_ = std::signal(SIGINT, on_interrupt);
-    previous_term_ = std::signal(SIGTERM, on_interrupt);
-  }
-  ~InterruptGuard() {
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
-  }
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-
- private:
-  void (*previous_int_)(int);
-  void (*previous_term_)(int);
-};
 
 // One line per run on stderr: updated in place on a terminal, written once when the run ends
 // otherwise (a log stays readable).
@@ -118,7 +90,7 @@ int run_compare_command(const CompareOptions& options) {
 
   ProgressPrinter progress;
   settings.progress = [&progress](const CompareProgress& p) {
-    if (g_interrupted) throw Interrupted{};
+    if (interrupted()) throw Interrupted{};
     progress(p);
   };
   std::cerr << "boxpile compare: " << scene.name << " (" << scene.source << "), "

@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   add_run_command(app, run);
   CompareOptions compare;
   add_compare_command(app, compare);
+  StabilityOptions stability;
+  add_stability_command(app, stability);
 
   try {
     app.parse(argc, argv);
@@ -37,6 +39,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("contacts")) return run_contacts(contacts);
     if (app.got_subcommand("run")) return run_run(run);
     if (app.got_subcommand("compare")) return run_compare_command(compare);
+    if (app.got_subcommand("stability")) return run_stability_command(stability);
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());
