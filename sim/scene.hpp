@@ -61,6 +61,11 @@ struct SolverSettings {
   int recovery_passes = 5;
 };
 
+// The contact margin and penetration slop for boxes whose smallest edge is `smallest_edge` (m):
+// the settings' values, or less for small boxes (docs/solver.md, "Lengths relative to the boxes").
+double contact_margin_for(const SolverSettings& settings, double smallest_edge);
+double penetration_slop_for(const SolverSettings& settings, double smallest_edge);
+
 struct TimeSettings {
   double dt = 1.0 / 240.0;  // s
   double duration = 5.0;    // s
