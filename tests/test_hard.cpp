@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,14 @@ std::vector<Scene> catalogue() {
   return scenes;
 }
 
+// The failed checks of a cell, for the log.
+std::string failed_checks(const StabilityCell& cell) {
+  std::ostringstream why;
+  for (const CheckResult& r : cell.checks)
+    if (!r.passed) why << ' ' << describe(r) << ';';
+  return why.str();
+}
+
 // The failing scenes of one reference engine, listed for the log.
 int count_failures(const std::string& engine) {
   int failed = 0;
@@ -28,10 +37,7 @@ int count_failures(const std::string& engine) {
     const StabilityCell cell = run_stability_cell(scene, engine, StabilitySettings{});
     if (cell.passed) continue;
     ++failed;
-    std::string why;
-    for (const CheckResult& r : cell.checks)
-      if (!r.passed) why += " " + describe(r) + ";";
-    WARN(engine << " fails " << scene.name << ":" << why);
+    WARN(engine << " fails " << scene.name << ":" << failed_checks(cell));
   }
   return failed;
 }
@@ -62,10 +68,7 @@ TEST_CASE("our engine passes every check of every hard scene but the known failu
   for (const Scene& scene : catalogue()) {
     const StabilityCell cell = run_stability_cell(scene, "own", StabilitySettings{});
     if (kOwnKnownFailures.count(scene.name)) {
-      std::string why;
-      for (const CheckResult& r : cell.checks)
-        if (!r.passed) why += " " + describe(r) + ";";
-      WARN("known failure, own on " << scene.name << ":" << why);
+      WARN("known failure, own on " << scene.name << ":" << failed_checks(cell));
       CHECK_FALSE(cell.passed);
       continue;
     }
