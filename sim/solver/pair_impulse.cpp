@@ -16,27 +16,40 @@ using BlockVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxBlockPoints,
 // exact ones (the Tikhonov limit), which is the symmetric one.
 constexpr double kRidge = 1e-10;
 
-// n_i . K_ij n_j for body `b` (a zero share when fixed): (1/m) n_i.n_j + (r_i x n_i) . I^-1 (r_j x n_j).
-double coupling(const RigidBody& b, const Vec3& ri, const Vec3& ni, const Vec3& rj, const Vec3& nj) {
-  if (b.fixed) return 0.0;
-  return b.inv_mass * ni.dot(nj) + ri.cross(ni).dot(b.inv_inertia_world * rj.cross(nj));
+// One point's part of the block for one body: n_i . K_ij n_j = (1/m) n_i . n_j + c_i . I^-1 c_j with
+// c = r x n. Computed once per point, so that an entry of the block costs two dot products.
+struct PointShare {
+  Vec3 c = Vec3::Zero();   // r x n
+  Vec3 Ic = Vec3::Zero();  // I^-1 (r x n)
+};
+
+PointShare share_of(const RigidBody& b, const Vec3& r, const Vec3& n) {
+  if (b.fixed) return {};
+  const Vec3 c = r.cross(n);
+  return {c, b.inv_inertia_world * c};
 }
 
-// The normal impulses of the points in `set` that bring each to u_n = target: the minimum-norm
+// The normal impulses of the points in `set` that change each u_n by `change`: the minimum-norm
 // solution, then, while one is negative, the most negative point leaves the set.
 void solve_normal(const SolverBodies& sb, std::span<SolverContact> points, std::array<int, kMaxBlockPoints>& set,
-                  int& count, const BlockVector& target_all, BlockVector& lambda) {
+                  int& count, const BlockVector& change, BlockVector& lambda) {
   const RigidBody& a = sb.get(points[0].a);
   const RigidBody& b = sb.get(points[0].b);
+  const double inv_mass = (a.fixed ? 0.0 : a.inv_mass) + (b.fixed ? 0.0 : b.inv_mass);
+  std::array<PointShare, kMaxBlockPoints> sa, sbb;
+  for (int i = 0; i < static_cast<int>(points.size()); ++i) {
+    sa[i] = share_of(a, points[i].ra, points[i].n);
+    sbb[i] = share_of(b, points[i].rb, points[i].n);
+  }
   while (count > 0) {
     BlockMatrix A(count, count);
     BlockVector rhs(count);
     for (int p = 0; p < count; ++p) {
-      const SolverContact& ci = points[set[p]];
-      rhs[p] = target_all[set[p]];
-      for (int q = 0; q < count; ++q) {
-        const SolverContact& cj = points[set[q]];
-        A(p, q) = coupling(a, ci.ra, ci.n, cj.ra, cj.n) + coupling(b, ci.rb, ci.n, cj.rb, cj.n);
+      const int i = set[p];
+      rhs[p] = change[i];
+      for (int q = p; q < count; ++q) {
+        const int j = set[q];
+        A(p, q) = A(q, p) = inv_mass * points[i].n.dot(points[j].n) + sa[i].c.dot(sa[j].Ic) + sbb[i].c.dot(sbb[j].Ic);
       }
     }
     A.diagonal().array() += kRidge * A.diagonal().mean();
@@ -68,18 +81,24 @@ void solve_block(SolverBodies& sb, std::span<SolverContact> points, bool restitu
   const int n = static_cast<int>(points.size());
   std::array<int, kMaxBlockPoints> set{};
   int count = 0;
-  BlockVector target(n);
+  BlockVector target(n);  // the change of u_n each approaching point needs
   for (int i = 0; i < n; ++i) {
     const double un = points[i].n.dot(sb.relative_velocity(points[i]));
     target[i] = 0.0;
     if (!points[i].active || un >= 0.0) continue;
     const double e = restitution ? points[i].restitution : 0.0;
-    target[i] = -(1.0 + e) * un;  // the change of u_n the impulses must make
+    target[i] = -(1.0 + e) * un;
     set[count++] = i;
   }
   if (count == 0) return;
   BlockVector lambda;
-  solve_normal(sb, points, set, count, target, lambda);
+  if (count == 1) {  // one point: the scalar impulse, no system to build
+    const SolverContact& c = points[set[0]];
+    lambda.resize(1);
+    lambda[0] = target[set[0]] / c.n.dot(c.K * c.n);
+  } else {
+    solve_normal(sb, points, set, count, target, lambda);
+  }
   for (int p = 0; p < count; ++p) {
     SolverContact& c = points[set[p]];
     ++counters.normal_impulses;
