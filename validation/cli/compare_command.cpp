@@ -57,9 +57,11 @@ class ProgressPrinter {
 
 }  // namespace
 
+// The main job: both of our contact methods beside the two references, on the bone scene.
 CompareOptions default_compare_options() {
   CompareOptions o;
   o.scene = BOXPILE_DEFAULT_SCENE;
+  o.engines = {"own-impulse", "own-penalty", "ode", "bullet"};
   return o;
 }
 
@@ -67,7 +69,8 @@ void add_compare_command(CLI::App& app, CompareOptions& options) {
   CLI::App* cmd = app.add_subcommand("compare", "Run a scene in several engines and write a report comparing them "
                                                 "(report.json, report.md, SVG plots)");
   cmd->add_option("scene", options.scene, "Scene file (JSON, docs/scene-format.md)")->required();
-  cmd->add_option("--engines", options.engines, "Comma-separated engines (default: own,ode,bullet)")->delimiter(',');
+  cmd->add_option("--engines", options.engines, "Comma-separated engines: own (the scene's solver.method), own-impulse, own-penalty, ode, "
+                  "bullet (default: own,ode,bullet)")->delimiter(',');
   cmd->add_option("--dt", options.dt, "Time step in s (default: the scene's)")->check(CLI::PositiveNumber);
   cmd->add_option("--duration", options.duration, "Simulated time in s (default: the scene's)")
       ->check(CLI::NonNegativeNumber);
