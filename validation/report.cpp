@@ -490,20 +490,7 @@ void write_report(const CompareResult& r, const fs::path& dir, std::vector<std::
     os << report_json(r).dump(1) << '\n';
     if (!os.flush()) throw std::runtime_error((dir / "report.json").string() + ": write failed");
   }
-  std::vector<std::string> rendered;
-  const bool gnuplot = gnuplot_available();
-  if (!gnuplot) notes.push_back("gnuplot not found (scripts/install-deps installs gnuplot-nox): plots not rendered; "
-                                "their data and scripts are written");
-  for (const PlotSpec& spec : report_plots(r)) {
-    write_plot_files(dir, spec);
-    if (!gnuplot) continue;
-    try {
-      render_plot(dir, spec.name);
-      rendered.push_back(spec.name);
-    } catch (const PlotError& e) {
-      notes.push_back(e.what());
-    }
-  }
+  const std::vector<std::string> rendered = write_plots(dir, report_plots(r), notes);
   std::ofstream os(dir / "report.md");
   os << report_markdown(r, rendered, notes);
   if (!os.flush()) throw std::runtime_error((dir / "report.md").string() + ": write failed");

@@ -180,23 +180,7 @@ void write_stability_report(const StabilityResult& r, const fs::path& dir, std::
     os << stability_json(r).dump(1) << '\n';
     if (!os.flush()) throw std::runtime_error((dir / "stability.json").string() + ": write failed");
   }
-  std::vector<std::string> rendered;
-  const bool gnuplot = gnuplot_available();
-  const std::vector<PlotSpec> plots = stability_plots(r);
-  if (!gnuplot && !plots.empty()) {
-    notes.push_back("gnuplot not found (scripts/install-deps installs gnuplot-nox): plots not rendered; "
-                    "their data and scripts are written");
-  }
-  for (const PlotSpec& spec : plots) {
-    write_plot_files(dir, spec);
-    if (!gnuplot) continue;
-    try {
-      render_plot(dir, spec.name);
-      rendered.push_back(spec.name);
-    } catch (const PlotError& e) {
-      notes.push_back(e.what());
-    }
-  }
+  const std::vector<std::string> rendered = write_plots(dir, stability_plots(r), notes);
   std::ofstream os(dir / "stability.md");
   os << stability_markdown(r, rendered, notes);
   if (!os.flush()) throw std::runtime_error((dir / "stability.md").string() + ": write failed");
