@@ -119,7 +119,7 @@ TEST_CASE("compare on a stack of five gives every field of the report", "[compar
   for (const EngineRun& run : r.runs) {
     INFO("engine " << run.engine);
     CHECK(run.steps == 120);
-    CHECK(run.frames.t.size() == 31);  // every 4 steps at 60 frames per second, and the start
+    CHECK(run.recording.frames.t.size() == 31);  // every 4 steps at 60 frames per second, and the start
     CHECK(run.energy_initial == Approx(122.625).margin(1e-9));  // 9.81 * (0.5 + ... + 4.5)
     CHECK(run.finite);
     // A resting stack stays one stack of five, settled within a millimetre of 5 m.

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -15,6 +14,7 @@
 #include "sim/collision/broadphase.hpp"
 #include "sim/world.hpp"
 #include "validation/engine_factory.hpp"
+#include "validation/run_loop.hpp"
 #include "validation/state_meter.hpp"
 #include "validation/wire_check.hpp"
 
@@ -48,11 +48,6 @@ long steps_per_frame(const Scene& scene, double frame_rate) {
 
 double event_speed(const Scene& scene) {
   return std::max(kEventSpeedMin, kEventSpeedGravitySteps * scene.gravity.norm() * scene.time.dt);
-}
-
-bool finite(const BodyState& s) {
-  return s.position.allFinite() && s.orientation.coeffs().allFinite() && s.velocity.allFinite() &&
-         s.angular_velocity.allFinite();
 }
 
 // Impacts in one step of a reference engine: each contact point of the step's set approaching
@@ -124,101 +119,85 @@ class WireWatch {
   std::vector<WireReport> reports_;
 };
 
-enum class RunDetail { Full, StatesOnly };
-
 EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettings& settings,
-                  RunDetail detail, const std::function<void(double)>& progress) {
+                  RecordDetail detail, const std::function<void(double)>& progress) {
   EngineRun run;
   run.engine = std::string(name);
   const std::unique_ptr<Engine> engine = make_engine(name, scene, settings.reference);
   const auto* own = dynamic_cast<const World*>(engine.get());
   const auto* ode = dynamic_cast<const OdeEngine*>(engine.get());
-  const bool full = detail == RunDetail::Full;
+  const bool full = detail == RecordDetail::Full;
   const double dt = scene.time.dt;
   const long steps = step_count(scene);
-  const long every = steps_per_frame(scene, settings.frame_rate);
   const double speed = event_speed(scene);
 
   StateMeter meter(scene);
   RunMonitor monitor(scene);
   WireWatch wires(scene);
+  Recorder recorder(scene, run.engine, detail);
   std::vector<RigidBody> posed = make_bodies(scene);
-  std::vector<BodyState> states, before;
   std::vector<BodyContact> contacts;
 
-  auto measure_step = [&](double t) {
-    if (!full) return;
-    monitor.observe(std::lround(t / dt), states);
-    const FrameMetrics m = meter.measure_step(states);
+  // Every step: energy, penetration and the wires measured, impacts found.
+  auto measure_step = [&](const StepView& v) {
+    monitor.observe(v.step, v.states);
+    const FrameMetrics m = meter.measure_step(v.states);
     const double e = m.energy.total();
-    if (t == 0.0) run.energy_initial = run.energy_max = e;
+    if (v.step == 0) run.energy_initial = run.energy_max = e;
     if (e > run.energy_max) {
       run.energy_max = e;
-      run.energy_max_t = t;
+      run.energy_max_t = v.t;
     }
     run.energy_final = e;
     if (m.penetration.depth > run.deepest.depth) {
       run.deepest = m.penetration;
-      run.deepest_t = t;
+      run.deepest_t = v.t;
     }
-    wires.measure(states);
+    wires.measure(v.states);
+    if (v.step == 0) return;
+    v.engine.contacts(contacts);
+    set_body_states(posed, v.before);
+    find_impacts(contacts, posed, v.t - dt, dt, speed, run.events);
   };
-  auto record = [&](double t) {
-    FrameSeries& f = run.frames;
-    f.t.push_back(t);
-    f.states.push_back(states);
+  // Every frame: the recording, the tallest stack and levitation.
+  auto record = [&](const StepView& v) {
+    recorder.frame(v);
+    if (progress && v.step > 0) progress(static_cast<double>(v.step) / static_cast<double>(steps));
     if (!full) return;
-    const FrameMetrics m = meter.measure(states);
-    f.energy.push_back(m.energy.total());
-    f.penetration.push_back(m.penetration.depth);
-    f.levitation.push_back(m.levitation);
-    set_body_states(posed, states);
-    f.stack_height.push_back(tallest_stack(posed, scene, settings.touch_tolerance));
+    set_body_states(posed, v.states);
+    recorder.recording().frames.stack_height.push_back(tallest_stack(posed, scene, settings.touch_tolerance));
     // At the start every body is at rest, wherever the scene put it: a body placed in the air
     // is not levitating yet.
-    if (t > 0.0) run.levitation_max = std::max(run.levitation_max, m.levitation);
-    run.levitation_final = m.levitation;
+    const double levitation = recorder.last_metrics().levitation;
+    if (v.step > 0) run.levitation_max = std::max(run.levitation_max, levitation);
+    run.levitation_final = levitation;
   };
 
-  engine->body_states(states);
-  measure_step(0.0);
-  record(0.0);
-  using Clock = std::chrono::steady_clock;
-  Clock::duration stepping{};
-  for (long k = 1; k <= steps; ++k) {
-    std::swap(before, states);
-    const Clock::time_point start = Clock::now();
-    engine->step();
-    stepping += Clock::now() - start;
-    const double t = static_cast<double>(k) * dt;
-    engine->body_states(states);
-    if (full) {
-      engine->contacts(contacts);
-      set_body_states(posed, before);
-      find_impacts(contacts, posed, t - dt, dt, speed, run.events);
-    }
-    measure_step(t);
-    if (k % every == 0 || k == steps) {
-      record(t);
-      if (progress) progress(static_cast<double>(k) / static_cast<double>(steps));
-    }
-  }
+  RunHooks hooks;
+  if (full) hooks.step = measure_step;
+  hooks.frame = record;
+  const RunLoopResult loop =
+      run_loop(*engine, dt, steps, steps_per_frame(scene, settings.frame_rate), hooks);
 
-  run.steps = steps;
-  run.wall_seconds = std::chrono::duration<double>(stepping).count();
-  run.us_per_step = steps > 0 ? 1e6 * run.wall_seconds / static_cast<double>(steps) : 0.0;
-  run.final_states = states;
-  run.final_t = static_cast<double>(steps) * dt;
-  run.finite = std::all_of(states.begin(), states.end(), [](const BodyState& s) { return finite(s); });
+  run.steps = loop.steps;
+  run.wall_seconds = loop.wall_seconds;
+  run.us_per_step = loop.steps > 0 ? 1e6 * run.wall_seconds / static_cast<double>(loop.steps) : 0.0;
+  run.final_states = loop.final_states;
+  run.final_t = loop.final_t;
+  run.finite = !loop.stopped;
+  run.recording = std::move(recorder.recording());
+  run.recording.stopped = loop.stopped;
   run.engine_messages = ode ? ode->messages() : 0;
   if (!full) return run;
 
   run.measures = monitor.measures();
   run.checks = monitor.evaluate();
+  // The loop ends a run at its first non-finite state, which the monitor never sees.
+  if (loop.stopped) run.checks = {{"finite", 0.0, 1.0, true, false, ""}};
   if (own) attach_impulses(*own, dt, run.events);
   run.wires = wires.reports();
   const std::vector<RigidBody> start = make_bodies(scene);
-  set_body_states(posed, states);
+  set_body_states(posed, run.final_states);
   run.stacks = report_stacks(find_stacks(posed, scene, settings.touch_tolerance),
                              find_stacks(start, scene, settings.touch_tolerance), posed);
   return run;
@@ -241,7 +220,7 @@ std::string verdict(const RunDifference& d, const std::optional<double>& chaos_t
 // at the end) and the one nearest after the deepest penetration.
 std::vector<std::pair<std::size_t, std::string>> contact_frames(const EngineRun& run, int count) {
   std::vector<std::pair<std::size_t, std::string>> chosen;
-  const std::vector<double>& t = run.frames.t;
+  const std::vector<double>& t = run.recording.frames.t;
   if (t.empty()) return chosen;
   auto nearest_at_or_after = [&](double time) {
     const auto it = std::lower_bound(t.begin(), t.end(), time - 1e-12);
@@ -264,7 +243,7 @@ std::vector<std::pair<std::size_t, std::string>> contact_frames(const EngineRun&
 
 EngineRun run_engine(const Scene& scene, std::string_view engine, const CompareSettings& settings,
                      const std::function<void(double)>& progress) {
-  return run_one(scene, engine, settings, RunDetail::Full, progress);
+  return run_one(scene, engine, settings, RecordDetail::Full, progress);
 }
 
 Scene perturbed_scene(const Scene& scene, double distance) {
@@ -452,11 +431,12 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
         settings.progress({names[e], baseline, static_cast<int>(2 * e) + (baseline ? 1 : 0), total, fraction});
       };
     };
-    result.runs.push_back(run_one(scene, names[e], settings, RunDetail::Full, progress_of(false)));
-    const EngineRun again = run_one(perturbed, names[e], settings, RunDetail::StatesOnly, progress_of(true));
+    result.runs.push_back(run_one(scene, names[e], settings, RecordDetail::Full, progress_of(false)));
+    const EngineRun again = run_one(perturbed, names[e], settings, RecordDetail::StatesOnly, progress_of(true));
     Baseline b;
     b.engine = names[e];
-    b.divergence = diff_runs(names[e], result.runs.back().frames, names[e] + " perturbed", again.frames,
+    b.divergence = diff_runs(names[e], result.runs.back().recording.frames, names[e] + " perturbed",
+                               again.recording.frames,
                              settings.position_threshold, settings.orientation_threshold);
     b.growth_rate = growth_rate(b.divergence, settings.perturbation);
     result.baselines.push_back(std::move(b));
@@ -465,7 +445,7 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
   for (std::size_t i = 0; i < names.size(); ++i) {
     for (std::size_t j = i + 1; j < names.size(); ++j) {
       PairComparison p;
-      p.difference = diff_runs(names[i], result.runs[i].frames, names[j], result.runs[j].frames,
+      p.difference = diff_runs(names[i], result.runs[i].recording.frames, names[j], result.runs[j].recording.frames,
                                settings.position_threshold, settings.orientation_threshold);
       for (const std::size_t k : {i, j}) {
         const std::optional<double>& t = result.baselines[k].divergence.position_passes;
@@ -487,11 +467,11 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
   if (!result.runs.empty()) {
     const EngineRun& first = result.runs.front();
     for (const auto& [frame, why] : contact_frames(first, settings.contact_check_frames)) {
-      ContactFrameCheck c = check_contacts(scene, first.frames.states[frame], settings.touch_tolerance);
+      ContactFrameCheck c = check_contacts(scene, first.recording.frames.states[frame], settings.touch_tolerance);
       c.engine = first.engine;
       c.why = why;
       c.frame = frame;
-      c.t = first.frames.t[frame];
+      c.t = first.recording.frames.t[frame];
       result.contacts.push_back(std::move(c));
     }
   }

@@ -17,6 +17,7 @@
 #include "sim/scene.hpp"
 #include "validation/contact_diff.hpp"
 #include "validation/stability_checks.hpp"
+#include "validation/recording.hpp"
 #include "validation/stacks.hpp"
 
 namespace boxpile {
@@ -62,16 +63,6 @@ struct ImpactEvent {
   std::optional<double> impulse;  // N s
 };
 
-// Recorded frames of one run: time, states and measurements at each.
-struct FrameSeries {
-  std::vector<double> t;
-  std::vector<std::vector<BodyState>> states;
-  std::vector<double> energy;        // J, total
-  std::vector<double> penetration;   // m, deepest
-  std::vector<double> levitation;    // m
-  std::vector<double> stack_height;  // m, the tallest stack (0 when none)
-};
-
 // How well a body on a wire stayed on it through a run (every step measured).
 struct WireReport {
   std::string body;
@@ -86,7 +77,9 @@ struct EngineRun {
   long steps = 0;
   double wall_seconds = 0.0;  // stepping only
   double us_per_step = 0.0;
-  FrameSeries frames;
+  // The recorded frames (CompareSettings::frame_rate), the bodies' shapes and the contact sets;
+  // `recording.stopped` says where a run that blew up stopped.
+  Recording recording;
   std::vector<BodyState> final_states;
   double final_t = 0.0;
   // Measured at every step.
@@ -99,7 +92,7 @@ struct EngineRun {
   std::vector<ImpactEvent> events;
   std::vector<StackReport> stacks;  // at the end
   std::vector<WireReport> wires;
-  bool finite = true;  // every state finite at the end
+  bool finite = true;  // every state finite to the end (the run stops at the first that is not)
   std::uint64_t engine_messages = 0;  // ODE's messages during the run
   // The scene's checks (validation/stability_checks.hpp), measured at every step.
   RunMeasures measures;

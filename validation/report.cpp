@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "validation/cli/json_output.hpp"
+#include "validation/replay_data.hpp"
+#include "validation/replay_page.hpp"
 
 namespace boxpile {
 namespace {
@@ -39,6 +41,13 @@ json diff_json(const ContactDiff& d) {
           {"depth_difference", optional_number(d.depth_difference)},
           {"point_distance", optional_number(d.hull_distance)},
           {"hausdorff", optional_number(d.hausdorff)}};
+}
+
+// The number of contact points each recorded frame's contact set holds.
+json contact_counts(const FrameSeries& frames) {
+  json counts = json::array();
+  for (const std::vector<BodyContact>& c : frames.contacts) counts.push_back(c.size());
+  return counts;
 }
 
 json engine_json(const CompareResult& r, const EngineRun& run, const Baseline& baseline) {
@@ -89,11 +98,12 @@ json engine_json(const CompareResult& r, const EngineRun& run, const Baseline& b
             {"growth_rate", baseline.growth_rate},
             {"max_position", d.max_position}}},
           {"series",
-           {{"t", run.frames.t},
-            {"energy", run.frames.energy},
-            {"penetration", run.frames.penetration},
-            {"levitation", run.frames.levitation},
-            {"stack_height", run.frames.stack_height}}}};
+           {{"t", run.recording.frames.t},
+            {"energy", run.recording.frames.energy},
+            {"penetration", run.recording.frames.penetration},
+            {"levitation", run.recording.frames.levitation},
+            {"stack_height", run.recording.frames.stack_height},
+            {"contacts", contact_counts(run.recording.frames)}}}};
 }
 
 json pair_json(const CompareResult& r, const PairComparison& p) {
@@ -334,15 +344,15 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
   for (std::size_t e = 0; e < r.runs.size(); ++e) {
     const EngineRun& run = r.runs[e];
     const int color = static_cast<int>(e);
-    energy.series.push_back({run.engine, run.frames.t, run.frames.energy, Style::Line, color});
+    energy.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.energy, Style::Line, color});
     PlotSeries impacts{run.engine + " impacts", {}, {}, Style::Points, color};
     for (const ImpactEvent& ev : run.events) {
       impacts.x.push_back(ev.t);
-      impacts.y.push_back(at_time(run.frames.t, run.frames.energy, ev.t));
+      impacts.y.push_back(at_time(run.recording.frames.t, run.recording.frames.energy, ev.t));
     }
     energy.series.push_back(std::move(impacts));
-    penetration.series.push_back({run.engine, run.frames.t, run.frames.penetration, Style::Line, color});
-    stacks.series.push_back({run.engine, run.frames.t, run.frames.stack_height, Style::Line, color});
+    penetration.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.penetration, Style::Line, color});
+    stacks.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.stack_height, Style::Line, color});
   }
   for (std::size_t p = 0; p < r.pairs.size(); ++p) {
     const RunDifference& d = r.pairs[p].difference;
@@ -378,10 +388,15 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
      << fmt(r.settings.orientation_threshold) << " rad; bodies within " << fmt(r.settings.touch_tolerance)
      << " m touch\n\n";
   for (const EngineRun& run : r.runs) {
-    if (!run.finite) md << "**" << run.engine << " blew up: some states are not finite at the end.**\n\n";
+    if (const auto& stop = run.recording.stopped) {
+      md << "**" << run.engine << " blew up: the " << stop->quantity << " of " << stop->body << " is not finite after step "
+         << stop->step << " (t = " << seconds(stop->t) << "); its run stopped there.**\n\n";
+    }
     if (run.engine_messages > 0) md << run.engine << " printed " << run.engine_messages << " solver message(s).\n\n";
   }
 
+  md << "Watch the runs side by side in [replay.html](replay.html) (open it in a browser; docs/viewer.md "
+        "describes it).\n\n";
   md << "## Per engine\n\n" << markdown_table(engine_header(r, "metric"), engine_rows(r)) << '\n';
   md << "Energy is measured the same way for every engine from its body states (the scene's bodies "
         "only). Impacts are pairs approaching faster than resting contact explains, found the same way "
@@ -484,12 +499,27 @@ std::string summary_table(const CompareResult& r) {
   return os.str();
 }
 
+void write_replay(const CompareResult& r, const json& report, const fs::path& dir, std::vector<std::string>& notes) {
+  std::vector<const Recording*> runs;
+  for (const EngineRun& run : r.runs) runs.push_back(&run.recording);
+  const json data = replay_data(r.scene.name, runs, marks_from_report(report));
+  write_json_file(data, (dir / kReplayData).string());
+  try {
+    write_replay_page(data, load_three_js(), dir / kReplayPage);
+  } catch (const ThreeJsMissing& e) {
+    notes.push_back(std::string(kReplayPage) + " not written: " + e.what() + "; `boxpile view` makes it from " +
+                    kReplayData + " once three.js is installed");
+  }
+}
+
 void write_report(const CompareResult& r, const fs::path& dir, std::vector<std::string>& notes) {
+  const json report = report_json(r);
   {
     std::ofstream os(dir / "report.json");
-    os << report_json(r).dump(1) << '\n';
+    os << report.dump(1) << '\n';
     if (!os.flush()) throw std::runtime_error((dir / "report.json").string() + ": write failed");
   }
+  write_replay(r, report, dir, notes);
   const std::vector<std::string> rendered = write_plots(dir, report_plots(r), notes);
   std::ofstream os(dir / "report.md");
   os << report_markdown(r, rendered, notes);

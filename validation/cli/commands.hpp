@@ -54,6 +54,15 @@ struct CompareOptions {
 };
 void add_compare_command(CLI::App& app, CompareOptions& options);
 int run_compare_command(const CompareOptions& options);
+// `boxpile view RUN.json|DIR [--out FILE]`: writes a replay page for a run file or a report
+// directory (docs/viewer.md).
+struct ViewOptions {
+  std::string input;
+  std::string out;  // empty: beside the input
+};
+void add_view_command(CLI::App& app, ViewOptions& options);
+int run_view(const ViewOptions& options);
+
 // The scene and report directory of `boxpile` with no command.
 CompareOptions default_compare_options();
 

@@ -33,13 +33,17 @@ nlohmann::json bodies_json(const std::vector<BodyState>& states) {
 }
 
 void write_json_file(const nlohmann::json& doc, const std::string& path) {
+  write_text_file(doc.dump(2) + '\n', path);
+}
+
+void write_text_file(const std::string& text, const std::string& path) {
   namespace fs = std::filesystem;
   const fs::path target(path);
   const fs::path temp = target.parent_path() / (".tmp-" + target.filename().string());
   {
     std::ofstream os(temp);
     if (!os) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
-    os << doc.dump(2) << '\n';
+    os << text;
     if (!os.flush()) {
       std::error_code ignored;
       fs::remove(temp, ignored);

@@ -21,5 +21,7 @@ nlohmann::json bodies_json(const std::vector<BodyState>& states);
 // Writes `doc` to `path` atomically: a temporary file beside it, then a rename, so a failure
 // never leaves a half-written file. Throws std::runtime_error naming the path.
 void write_json_file(const nlohmann::json& doc, const std::string& path);
+// The same for any text.
+void write_text_file(const std::string& text, const std::string& path);
 
 }  // namespace boxpile

@@ -23,6 +23,8 @@ int main(int argc, char** argv) {
   add_compare_command(app, compare);
   StabilityOptions stability;
   add_stability_command(app, stability);
+  ViewOptions view;
+  add_view_command(app, view);
 
   try {
     app.parse(argc, argv);
@@ -40,6 +42,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) return run_run(run);
     if (app.got_subcommand("compare")) return run_compare_command(compare);
     if (app.got_subcommand("stability")) return run_stability_command(stability);
+    if (app.got_subcommand("view")) return run_view(view);
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());

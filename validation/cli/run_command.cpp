@@ -1,4 +1,3 @@
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -10,6 +9,8 @@
 #include "validation/cli/json_output.hpp"
 #include "sim/world.hpp"
 #include "validation/engine_factory.hpp"
+#include "validation/recording.hpp"
+#include "validation/run_loop.hpp"
 #include "validation/state_meter.hpp"
 
 namespace boxpile::cli {
@@ -17,12 +18,6 @@ namespace {
 
 // Up to this many bodies the human summary lists each one; above it, the extremes only.
 constexpr std::size_t kSummaryBodyLimit = 10;
-
-nlohmann::json metrics_json(const FrameMetrics& m) {
-  return {{"energy", {{"kinetic", m.energy.kinetic()}, {"potential", m.energy.potential}, {"total", m.energy.total()}}},
-          {"max_penetration", m.penetration.depth},
-          {"levitation", m.levitation}};
-}
 
 // Our solver's statistics of its last step. Impulse method: passes used and the residual
 // (largest approaching normal velocity, m/s) after each pass, for the convergence plots. Penalty
@@ -47,11 +42,6 @@ nlohmann::json solver_json(const World& world) {
           {"shock_levels", st.shock_levels},
           {"residual_after_shock", st.residual_after_shock},
           {"collision_events", world.events().size()}};
-}
-
-bool finite_state(const BodyState& s) {
-  return s.position.allFinite() && s.orientation.coeffs().allFinite() && s.velocity.allFinite() &&
-         s.angular_velocity.allFinite();
 }
 
 std::string format(double x, const char* fmt = "%.6g") {
@@ -128,40 +118,24 @@ int run_run(const RunOptions& options) {
   }
   const std::unique_ptr<Engine> engine = make_engine(options.engine, scene, settings);
   const bool record = !options.out.empty();
-
-  std::vector<BodyState> states;
-  std::vector<BodyContact> contacts;
-  nlohmann::json frames = nlohmann::json::array();
-  StateMeter meter(scene);
   const auto* own = dynamic_cast<const World*>(engine.get());
-  auto add_frame = [&] {
-    engine->body_states(states);
-    engine->contacts(contacts);
-    nlohmann::json frame = {{"t", engine->time()}, {"bodies", bodies_json(states)}, {"contacts", contacts.size()}};
-    frame.update(metrics_json(meter.measure(states)));
-    if (own) frame["solver"] = solver_json(*own);
-    frames.push_back(std::move(frame));
-  };
 
-  using Clock = std::chrono::steady_clock;
-  Clock::duration stepping{};
-  bool blew_up = false;
-  if (record) add_frame();
-  for (long k = 1; k <= steps; ++k) {
-    const Clock::time_point start = Clock::now();
-    engine->step();
-    stepping += Clock::now() - start;
-    if (record && k % options.every == 0) add_frame();
+  Recorder recorder(scene, options.engine);
+  std::vector<nlohmann::json> solver;  // our solver's statistics, per frame
+  RunHooks hooks;
+  if (record) {
+    hooks.frame = [&](const StepView& v) {
+      recorder.frame(v);
+      if (own) solver.push_back({{"solver", solver_json(*own)}});
+    };
   }
-  const double wall = std::chrono::duration<double>(stepping).count();
+  const RunLoopResult loop = run_loop(*engine, dt, steps, options.every, hooks);
+  const std::vector<BodyState>& states = loop.final_states;
 
-  engine->body_states(states);
-  engine->contacts(contacts);
-  for (const BodyState& s : states) {
-    if (!finite_state(s)) {
-      std::cerr << "boxpile: warning: body \"" << s.name << "\" has a non-finite state at the end\n";
-      blew_up = true;
-    }
+  if (loop.stopped) {
+    std::cerr << "boxpile: error: " << loop.stopped->quantity << " of body \"" << loop.stopped->body
+              << "\" is not finite after step " << loop.stopped->step << " (t = " << format(loop.stopped->t)
+              << " s): the run stopped there\n";
   }
   if (const auto* ode = dynamic_cast<const OdeEngine*>(engine.get()); ode && ode->messages() > 0) {
     std::cerr << "boxpile: note: ODE reported " << ode->messages() << " message(s); the last: "
@@ -169,6 +143,7 @@ int run_run(const RunOptions& options) {
   }
 
   if (record) {
+    recorder.recording().stopped = loop.stopped;
     nlohmann::json events = nlohmann::json::array();
     if (own) {
       for (const CollisionEvent& e : own->events()) {
@@ -177,23 +152,23 @@ int run_run(const RunOptions& options) {
                           {"impulse", e.impulse}, {"approach_speed", e.approach_speed}});
       }
     }
-    const nlohmann::json doc = {{"scene", scene.name},
-                                {"engine", options.engine},
-                                {"dt", dt},
-                                {"steps", steps},
-                                {"wall_seconds", wall},
-                                {"frames", std::move(frames)},
-                                {"final", {{"t", engine->time()}, {"bodies", bodies_json(states)}}},
-                                {"events", std::move(events)}};
+    nlohmann::json doc = recording_json(recorder.recording(), solver);
+    doc["steps"] = loop.steps;
+    doc["wall_seconds"] = loop.wall_seconds;
+    doc["final"] = {{"t", loop.final_t}, {"bodies", bodies_json(states)}};
+    doc["events"] = std::move(events);
     write_json_file(doc, options.out);
   } else {
-    print_summary(scene, options.engine, steps, wall, states, contacts.size());
+    std::vector<BodyContact> contacts;
+    engine->contacts(contacts);
+    print_summary(scene, options.engine, loop.steps, loop.wall_seconds, states, contacts.size());
+    StateMeter meter(scene);
     const FrameMetrics m = meter.measure(states);
     std::cout << "energy " << format(m.energy.total(), "%.6g") << " J (kinetic " << format(m.energy.kinetic(), "%.3g")
               << " J), deepest penetration " << format(m.penetration.depth, "%.3g") << " m, levitation "
               << format(m.levitation, "%.3g") << " m\n";
   }
-  return blew_up ? kExitFailure : kExitOk;
+  return loop.stopped ? kExitFailure : kExitOk;
 }
 
 }  // namespace boxpile::cli
