@@ -8,6 +8,7 @@
 
 #include "sim/io/input_error.hpp"
 #include "validation/engine_factory.hpp"
+#include "validation/run_loop.hpp"
 
 namespace boxpile {
 namespace {
@@ -40,32 +41,28 @@ StabilityCell run_stability_cell(const Scene& scene, std::string_view engine_nam
   const long progress_every = std::max(1L, steps / 100);
 
   RunMonitor monitor(scene);
-  std::vector<BodyState> states;
-  auto record = [&](long k) {
-    cell.t.push_back(static_cast<double>(k) * scene.time.dt);
+  RunHooks hooks;
+  hooks.step = [&](const StepView& v) {
+    monitor.observe(v.step, v.states);
+    if (progress && v.step > 0 && (v.step % progress_every == 0 || v.step == steps))
+      progress(static_cast<double>(v.step) / static_cast<double>(steps));
+  };
+  hooks.frame = [&](const StepView& v) {
+    cell.t.push_back(v.t);
     cell.energy.push_back(monitor.energy());
     cell.kinetic.push_back(monitor.kinetic());
   };
-  engine->body_states(states);
-  monitor.observe(0, states);
-  record(0);
-  Clock::duration stepping{};
-  long k = 1;
-  for (; k <= steps && monitor.finite(); ++k) {
-    const Clock::time_point start = Clock::now();
-    engine->step();
-    stepping += Clock::now() - start;
-    engine->body_states(states);
-    monitor.observe(k, states);
-    if (!monitor.finite()) break;
-    if (k % every == 0 || k == steps) record(k);
-    if (progress && (k % progress_every == 0 || k == steps)) progress(static_cast<double>(k) / static_cast<double>(steps));
-  }
-  cell.steps = std::min(k, steps);
-  cell.wall_seconds = std::chrono::duration<double>(stepping).count();
+  const RunLoopResult loop = run_loop(*engine, scene.time.dt, steps, every, hooks);
+  cell.steps = loop.steps;
+  cell.wall_seconds = loop.wall_seconds;
   cell.us_per_step = cell.steps > 0 ? 1e6 * cell.wall_seconds / static_cast<double>(cell.steps) : 0.0;
   cell.measures = monitor.measures();
   cell.checks = monitor.evaluate();
+  // The loop ends a run at its first non-finite state, which the monitor never sees.
+  if (loop.stopped) {
+    cell.measures.finite = false;
+    cell.checks = {{"finite", 0.0, 1.0, true, false, ""}};
+  }
   cell.passed = all_passed(cell.checks);
   return cell;
 }
