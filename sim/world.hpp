@@ -13,6 +13,7 @@
 #include "sim/collision/collide.hpp"
 #include "sim/engine.hpp"
 #include "sim/scene.hpp"
+#include "sim/step_storage.hpp"
 #include "sim/solver/contact_method.hpp"
 #include "sim/solver/step_context.hpp"
 #include "sim/solver/wire.hpp"
@@ -49,6 +50,7 @@ class World final : public Engine {
   double time_ = 0.0;
 
   SweepAndPrune broadphase_;
+  PlacedBoxes placed_;  // every body's boxes in the world, placed once per contact search
   std::vector<BodyContact> contacts_;
   std::vector<WireJoint> wires_;
   std::unique_ptr<ContactMethod> method_;

@@ -20,6 +20,12 @@ Aabb body_aabb(const RigidBody& body, double margin) {
   return box;
 }
 
+void SweepAndPrune::reserve(const StepStorage& storage) {
+  boxes_.reserve(storage.bodies);
+  order_.reserve(storage.bodies);
+  pairs_.reserve(storage.pairs());
+}
+
 const std::vector<std::pair<int, int>>& SweepAndPrune::find_pairs(const std::vector<RigidBody>& bodies,
                                                                   const std::vector<double>& margins) {
   const int n = static_cast<int>(bodies.size());

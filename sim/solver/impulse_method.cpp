@@ -9,7 +9,10 @@ namespace boxpile {
 ImpulseMethod::ImpulseMethod(std::size_t body_count) {
   start_v_.resize(body_count);
   start_omega_.resize(body_count);
-  solver_contacts_.reserve(8 * body_count);
+  const StepStorage storage{body_count};
+  solver_contacts_.reserve(storage.contacts());
+  shock_.reserve(storage);
+  recovery_.reserve(storage);
 }
 
 void ImpulseMethod::step(StepContext& ctx) {

@@ -8,6 +8,7 @@
 #include "sim/solver/impulse.hpp"
 #include "sim/solver/recovery.hpp"
 #include "sim/solver/shock_propagation.hpp"
+#include "sim/step_storage.hpp"
 
 namespace boxpile {
 

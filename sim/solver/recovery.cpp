@@ -4,6 +4,12 @@
 
 namespace boxpile {
 
+void PenetrationRecovery::reserve(const StepStorage& storage) {
+  pseudo_v_.reserve(storage.bodies);
+  pseudo_omega_.reserve(storage.bodies);
+  lambda_.reserve(storage.contacts());
+}
+
 void PenetrationRecovery::run(const ImpulseStep& step) {
   const SolverBodies& sb = step.sb;
   const std::vector<SolverContact>& contacts = step.contacts;
