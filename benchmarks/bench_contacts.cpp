@@ -13,9 +13,9 @@
 #include <btBulletCollisionCommon.h>
 #include <ode/ode.h>
 
-#include "reference/reference_contacts.hpp"
-#include "sim/collision/box_box.hpp"
-#include "tests/support/geometry.hpp"
+#include "boxpile/reference/reference_contacts.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/tests/support/geometry.hpp"
 
 namespace boxpile {
 namespace {
@@ -28,11 +28,11 @@ constexpr std::uint64_t kSeed = 1;
 static_assert((kPairs & (kPairs - 1)) == 0);
 inline std::size_t next_pair(std::size_t& i) { return i++ & (kPairs - 1); }
 
-const std::vector<test::BoxPair>& pairs() {
-  static const std::vector<test::BoxPair> set = [] {
+const std::vector<BoxPair>& pairs() {
+  static const std::vector<BoxPair> set = [] {
     std::mt19937_64 rng(kSeed);
-    std::vector<test::BoxPair> v;
-    for (int i = 0; i < kPairs; ++i) v.push_back(test::random_touching_pair(rng));
+    std::vector<BoxPair> v;
+    for (int i = 0; i < kPairs; ++i) v.push_back(random_touching_pair(rng));
     return v;
   }();
   return set;
@@ -45,7 +45,7 @@ void BM_BoxBox_Own(benchmark::State& state) {
   Manifold m;
   std::size_t i = 0;
   for (auto _ : state) {
-    const test::BoxPair& p = set[next_pair(i)];
+    const BoxPair& p = set[next_pair(i)];
     collide_box_box(p.a, p.b, settings, m);
     benchmark::DoNotOptimize(m);
   }
@@ -58,7 +58,7 @@ void BM_BoxBox_OwnSatOnly(benchmark::State& state) {
   const auto& set = pairs();
   std::size_t i = 0;
   for (auto _ : state) {
-    const test::BoxPair& p = set[next_pair(i)];
+    const BoxPair& p = set[next_pair(i)];
     benchmark::DoNotOptimize(box_box_sat(p.a, p.b));
   }
   state.SetItemsProcessed(state.iterations());
@@ -150,7 +150,7 @@ void BM_BoxBox_OdeAdapter(benchmark::State& state) {
   const auto& set = pairs();
   std::size_t i = 0;
   for (auto _ : state) {
-    const test::BoxPair& p = set[next_pair(i)];
+    const BoxPair& p = set[next_pair(i)];
     benchmark::DoNotOptimize(ode_box_box(p.a, p.b));
   }
   state.SetItemsProcessed(state.iterations());
@@ -161,7 +161,7 @@ void BM_BoxBox_BulletAdapter(benchmark::State& state) {
   const auto& set = pairs();
   std::size_t i = 0;
   for (auto _ : state) {
-    const test::BoxPair& p = set[next_pair(i)];
+    const BoxPair& p = set[next_pair(i)];
     benchmark::DoNotOptimize(bullet_box_box(p.a, p.b));
   }
   state.SetItemsProcessed(state.iterations());

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <string>
 
-#include "sim/io/scene_loader.hpp"
-#include "sim/world.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/world.hpp"
 
 namespace boxpile {
 namespace {

@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "benchmarks/generated_scenes.hpp"
-#include "reference/settings.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "validation/engine_factory.hpp"
+#include "generated_scenes.hpp"
+#include "boxpile/reference/settings.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/engine_factory.hpp"
 
 namespace boxpile {
 namespace {

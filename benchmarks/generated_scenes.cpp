@@ -1,4 +1,4 @@
-#include "benchmarks/generated_scenes.hpp"
+#include "generated_scenes.hpp"
 
 #include <cmath>
 #include <string>

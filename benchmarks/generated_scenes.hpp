@@ -3,7 +3,7 @@
 // that of the hard catalogue's pyramids and Jenga tower.
 #pragma once
 
-#include "sim/scene.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile::bench {
 

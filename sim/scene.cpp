@@ -1,8 +1,18 @@
-#include "sim/scene.hpp"
+#include "boxpile/sim/scene.hpp"
+
+#include <algorithm>
 
 #include <algorithm>
 
 namespace boxpile {
+namespace {
+
+// The least event speed, m/s: far above rounding of velocities, far below any real impact.
+constexpr double kEventSpeedMin = 0.01;
+// Steps of gravity's velocity gain a resting contact may show as approach without an event.
+constexpr double kEventSpeedGravitySteps = 2.0;
+
+}  // namespace
 
 namespace {
 // The contact margin and the penetration slop scale with the bodies: at most these fractions of
@@ -29,6 +39,10 @@ std::vector<RigidBody> make_bodies(const Scene& scene) {
                                d.material.value_or(scene.material), d.fixed));
   }
   return bodies;
+}
+
+double collision_event_speed(const Scene& scene, double dt) {
+  return std::max(kEventSpeedMin, kEventSpeedGravitySteps * scene.gravity.norm() * dt);
 }
 
 }  // namespace boxpile

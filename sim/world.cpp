@@ -1,4 +1,4 @@
-#include "sim/world.hpp"
+#include "boxpile/sim/world.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -9,8 +9,8 @@
 #include <new>
 #include <vector>
 
-#include "sim/io/scene_loader.hpp"
-#include "sim/world.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/world.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};

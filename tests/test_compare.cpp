@@ -14,12 +14,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/scene_loader.hpp"
-#include "validation/compare.hpp"
-#include "validation/report.hpp"
-#include "validation/report_directory.hpp"
-#include "validation/stacks.hpp"
-#include "validation/wire_check.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/report.hpp"
+#include "boxpile/validation/report_directory.hpp"
+#include "boxpile/validation/stacks.hpp"
+#include "boxpile/validation/wire_check.hpp"
 
 using namespace boxpile;
 using nlohmann::json;
@@ -53,7 +53,7 @@ int run_boxpile(const std::string& args) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// Every key the issue fixes for other tools, present with the right type.
+// Every key docs/compare.md fixes for other tools, present with the right type.
 void check_report_keys(const json& r, const std::vector<std::string>& engines) {
   CHECK(r.at("scene").is_string());
   CHECK(r.at("dt").is_number());

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/io/scene_loader.hpp"
-#include "validation/stability.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/stability.hpp"
 
 using namespace boxpile;
 
@@ -25,7 +25,7 @@ std::vector<Scene> catalogue() {
 // The failed checks of a cell, for the log.
 std::string failed_checks(const StabilityCell& cell) {
   std::ostringstream why;
-  for (const CheckResult& r : cell.checks)
+  for (const SceneCheckResult& r : cell.checks)
     if (!r.passed) why << ' ' << describe(r) << ';';
   return why.str();
 }
@@ -71,7 +71,7 @@ TEST_CASE("our engine passes every check of every hard scene but the known failu
       CHECK_FALSE(cell.passed);
       continue;
     }
-    for (const CheckResult& r : cell.checks) {
+    for (const SceneCheckResult& r : cell.checks) {
       INFO(scene.name << ": " << describe(r));
       CHECK(r.passed);
     }

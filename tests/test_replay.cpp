@@ -10,13 +10,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/input_error.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/recording.hpp"
-#include "validation/replay_data.hpp"
-#include "validation/replay_page.hpp"
-#include "validation/run_loop.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/recording.hpp"
+#include "boxpile/validation/replay_data.hpp"
+#include "boxpile/validation/replay_page.hpp"
+#include "boxpile/validation/run_loop.hpp"
 
 using namespace boxpile;
 using nlohmann::json;

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/io/scene_loader.hpp"
-#include "validation/stability_checks.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/stability_checks.hpp"
 
 using namespace boxpile;
 
@@ -24,8 +24,8 @@ BodyState state(const Vec3& p, const Vec3& v = Vec3::Zero(), const Vec3& w = Vec
   return {"box", p, Quat::Identity(), v, w};
 }
 
-const CheckResult& find(const std::vector<CheckResult>& results, const std::string& name) {
-  for (const CheckResult& r : results)
+const SceneCheckResult& find(const std::vector<SceneCheckResult>& results, const std::string& name) {
+  for (const SceneCheckResult& r : results)
     if (r.name == name) return r;
   FAIL("no check " << name);
   return results.front();
@@ -38,7 +38,7 @@ TEST_CASE("a body at rest passes every check", "[checks]") {
                               "no_turning": {"limit": 1e-3}})");
   RunMonitor m(s);
   for (long k = 0; k <= 100; ++k) m.observe(k, {state({0, 0, 0.5})});
-  const std::vector<CheckResult> r = m.evaluate();
+  const std::vector<SceneCheckResult> r = m.evaluate();
   CHECK(all_passed(r));
   CHECK(r.size() == 6);  // finite, energy, penetration, rest kinetic and move, turning
   CHECK(m.measures().energy_start == Approx(2 * 9.81 * 0.5));
@@ -53,7 +53,7 @@ TEST_CASE("energy that rises, a body that keeps moving and a spin are caught", "
   // Lifted by 1 cm and moving at 0.1 m/s at step 10, spinning at 2 rad/s after 0.5 s only.
   m.observe(10, {state({0, 0, 0.51}, {0.1, 0, 0})});
   m.observe(60, {state({0.002, 0, 0.5}, Vec3::Zero(), {0, 0, 2})});
-  const std::vector<CheckResult> r = m.evaluate();
+  const std::vector<SceneCheckResult> r = m.evaluate();
   CHECK_FALSE(all_passed(r));
   // The largest rise is the spin's: 1/2 I w^2 with I = m (a^2 + b^2) / 12 = 1/3 kg m^2 is 2/3 J
   // (the lift at step 10 added only 0.2062 J).
@@ -90,11 +90,11 @@ TEST_CASE("a body that passes a wall and a NaN are caught", "[checks]") {
   RunMonitor m(s);
   m.observe(0, {state({-1, 0, 0.5})});
   m.observe(1, {state({0.3, 0, 0.5})});
-  const CheckResult& wall = find(m.evaluate(), "stays_behind box");
+  const SceneCheckResult& wall = find(m.evaluate(), "stays_behind box");
   CHECK(wall.value == Approx(-0.31));
   CHECK_FALSE(wall.passed);
   m.observe(2, {state({std::nan(""), 0, 0.5})});
-  const std::vector<CheckResult> r = m.evaluate();
+  const std::vector<SceneCheckResult> r = m.evaluate();
   REQUIRE(r.size() == 1);
   CHECK(r[0].name == "finite");
   CHECK_FALSE(r[0].passed);

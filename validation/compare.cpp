@@ -1,4 +1,4 @@
-#include "validation/compare.hpp"
+#include "boxpile/validation/compare.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,26 +6,20 @@
 #include <limits>
 #include <memory>
 
-#include "reference/ode_engine.hpp"
-#include "reference/reference_contacts.hpp"
-#include "sim/collision/box.hpp"
-#include "sim/collision/box_box.hpp"
-#include "sim/collision/box_plane.hpp"
-#include "sim/collision/broadphase.hpp"
-#include "sim/world.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/run_loop.hpp"
-#include "validation/state_meter.hpp"
-#include "validation/wire_check.hpp"
+#include "boxpile/reference/reference_contacts.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
+#include "boxpile/sim/collision/broadphase.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/run_loop.hpp"
+#include "boxpile/validation/state_meter.hpp"
+#include "boxpile/validation/wire_check.hpp"
 
 namespace boxpile {
 namespace {
-
-// An approach faster than this is an impact: the rule our World uses for its collision events
-// (sim/world.cpp), so that every engine's events mean the same: above the |g| dt that gravity adds
-// to a resting contact in one step (twice it), and above rounding.
-constexpr double kEventSpeedMin = 0.01;  // m/s
-constexpr double kEventSpeedGravitySteps = 2.0;
 
 // The golden angle turns each body's perturbation away from the last one's, so that no two
 // neighbours are pushed the same way.
@@ -46,9 +40,6 @@ long steps_per_frame(const Scene& scene, double frame_rate) {
   return std::max(1L, std::lround(1.0 / (frame_rate * scene.time.dt)));
 }
 
-double event_speed(const Scene& scene) {
-  return std::max(kEventSpeedMin, kEventSpeedGravitySteps * scene.gravity.norm() * scene.time.dt);
-}
 
 // Impacts in one step of a reference engine: each contact point of the step's set approaching
 // faster than `speed` with the velocities before the step, and closing its gap within the step
@@ -77,8 +68,8 @@ void find_impacts(const std::vector<BodyContact>& contacts, const std::vector<Ri
 // outside in the same step for the same pair. (Its own approach speed is not used: it is measured
 // during the sequential passes, after other points' impulses have turned the body, so a box
 // landing flat at 4.45 m/s reads 4.88 m/s at its last corner.)
-void attach_impulses(const World& world, double dt, std::vector<ImpactEvent>& events) {
-  for (const CollisionEvent& e : world.events()) {
+void attach_impulses(const std::vector<CollisionEvent>& recorded, double dt, std::vector<ImpactEvent>& events) {
+  for (const CollisionEvent& e : recorded) {
     for (ImpactEvent& ev : events) {
       if (ev.body_a == e.body_a && ev.body_b == e.body_b && std::abs(ev.t - e.time) < 0.5 * dt) ev.impulse = e.impulse;
     }
@@ -124,12 +115,10 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   EngineRun run;
   run.engine = std::string(name);
   const std::unique_ptr<Engine> engine = make_engine(name, scene, settings.reference);
-  const auto* own = dynamic_cast<const World*>(engine.get());
-  const auto* ode = dynamic_cast<const OdeEngine*>(engine.get());
   const bool full = detail == RecordDetail::Full;
   const double dt = scene.time.dt;
   const long steps = step_count(scene);
-  const double speed = event_speed(scene);
+  const double speed = collision_event_speed(scene, scene.time.dt);
 
   StateMeter meter(scene);
   RunMonitor monitor(scene);
@@ -187,14 +176,14 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   run.finite = !loop.stopped;
   run.recording = std::move(recorder.recording());
   run.recording.stopped = loop.stopped;
-  run.engine_messages = ode ? ode->messages() : 0;
+  run.engine_messages = engine->messages();
   if (!full) return run;
 
   run.measures = monitor.measures();
   run.checks = monitor.evaluate();
   // The loop ends a run at its first non-finite state, which the monitor never sees.
   if (loop.stopped) run.checks = {{"finite", 0.0, 1.0, true, false, ""}};
-  if (own) attach_impulses(*own, dt, run.events);
+  if (const auto* recorded = engine->collision_events()) attach_impulses(*recorded, dt, run.events);
   run.wires = wires.reports();
   const std::vector<RigidBody> start = make_bodies(scene);
   set_body_states(posed, run.final_states);
@@ -316,6 +305,31 @@ RunDifference diff_runs(const std::string& a, const FrameSeries& fa, const std::
   return d;
 }
 
+namespace {
+
+// The detectors that apply to box-box and box-plane pairs alike, ours first.
+std::vector<const DetectorInfo*> pair_detectors() {
+  std::vector<const DetectorInfo*> shown;
+  for (const DetectorInfo& d : detectors()) {
+    if (d.box_plane_only) continue;
+    if (d.name == kOwnDetector) {
+      shown.insert(shown.begin(), &d);
+    } else {
+      shown.push_back(&d);
+    }
+  }
+  return shown;
+}
+
+}  // namespace
+
+const DetectorCheck& ContactPairCheck::of(std::string_view detector) const {
+  for (const DetectorCheck& d : detectors) {
+    if (d.detector == detector) return d;
+  }
+  throw std::out_of_range("no contact check of detector " + std::string(detector));
+}
+
 ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState>& states,
                                  double touch_tolerance) {
   ContactFrameCheck check;
@@ -324,19 +338,21 @@ ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState
   CollisionSettings own_settings = scene.collision;
   own_settings.margin = std::max(own_settings.margin, touch_tolerance);
 
+  DetectOptions options;
+  options.own = own_settings;
+  options.plane_margin = touch_tolerance;
+  const std::vector<const DetectorInfo*> shown = pair_detectors();
+
   std::vector<ContactPairCheck> pairs;
-  auto add = [&](int ia, int sa, int ib, int sb, const Manifold& own, const Manifold& ode, const Manifold& bullet) {
-    ContactPairCheck p;
-    p.body_a = ia;
-    p.shape_a = sa;
-    p.body_b = ib;
-    p.shape_b = sb;
-    p.own_points = own.size();
-    p.ode_points = ode.size();
-    p.bullet_points = bullet.size();
-    p.ode = diff_contacts(own, ode);
-    p.bullet = diff_contacts(own, bullet);
-    pairs.push_back(p);
+  // Runs every detector on the pair through `detect` and keeps the pair's check.
+  auto add = [&](int ia, int sa, int ib, int sb, const auto& detect) {
+    ContactPairCheck p{ia, sa, ib, sb, {}};
+    const Manifold own = detect(*shown.front());
+    for (const DetectorInfo* d : shown) {
+      const Manifold m = d == shown.front() ? own : detect(*d);
+      p.detectors.push_back({std::string(d->name), m.size(), diff_contacts(own, m)});
+    }
+    pairs.push_back(std::move(p));
   };
   auto box_of = [&](int body, int shape) {
     const RigidBody& b = bodies[static_cast<std::size_t>(body)];
@@ -352,9 +368,7 @@ ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState
       for (int s = 0; s < shapes_i; ++s) {
         const OrientedBox box = box_of(i, s);
         if (box_plane_depth(box, *scene.ground) < -touch_tolerance) continue;
-        Manifold own;
-        collide_box_plane(box, *scene.ground, touch_tolerance, own);
-        add(i, s, kGround, 0, own, ode_box_plane(box, *scene.ground), bullet_box_plane(box, *scene.ground));
+        add(i, s, kGround, 0, [&](const DetectorInfo& d) { return d.box_plane(box, *scene.ground, options); });
       }
     }
     const Aabb aabb_i = body_aabb(bi, touch_tolerance);
@@ -366,9 +380,7 @@ ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState
         for (int t = 0; t < static_cast<int>(bj.shapes.size()); ++t) {
           const OrientedBox b = box_of(j, t);
           if (box_box_sat(a, b, touch_tolerance).separation > touch_tolerance) continue;
-          Manifold own;
-          collide_box_box(a, b, own_settings, own);
-          add(i, s, j, t, own, ode_box_box(a, b), bullet_box_box(a, b));
+          add(i, s, j, t, [&](const DetectorInfo& d) { return d.box_box(a, b, options); });
         }
       }
     }
@@ -376,7 +388,10 @@ ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState
 
   check.pairs = static_cast<int>(pairs.size());
   for (const ContactPairCheck& p : pairs) {
-    if (p.own_points != p.ode_points || p.own_points != p.bullet_points) ++check.count_mismatches;
+    const int own = p.detectors.front().points;
+    if (std::any_of(p.detectors.begin(), p.detectors.end(), [own](const DetectorCheck& d) { return d.points != own; })) {
+      ++check.count_mismatches;
+    }
   }
   using Getter = std::optional<double> (*)(const ContactDiff&);
   const std::array<std::pair<const char*, Getter>, 3> metrics = {{
@@ -389,12 +404,12 @@ ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState
   }};
   for (const auto& [metric, get] : metrics) {
     const std::size_t first = check.worst.size();
-    for (const char* reference : {"ode", "bullet"}) {
-      const bool ode = std::string_view(reference) == "ode";
+    for (std::size_t k = 1; k < shown.size(); ++k) {
+      const std::string reference(shown[k]->name);
       const ContactPairCheck* worst = nullptr;
       double value = kNegligibleDisagreement;
       for (const ContactPairCheck& p : pairs) {
-        const std::optional<double> v = get(ode ? p.ode : p.bullet);
+        const std::optional<double> v = get(p.detectors[k].diff);
         if (v && *v > value) {
           value = *v;
           worst = &p;
@@ -452,10 +467,10 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
         if (t && (!p.chaos_time || *t < *p.chaos_time)) p.chaos_time = t;
       }
       p.verdict = verdict(p.difference, p.chaos_time);
-      const CheckResult* unstable_i = first_instability(result.runs[i].checks);
-      const CheckResult* unstable_j = first_instability(result.runs[j].checks);
+      const SceneCheckResult* unstable_i = first_instability(result.runs[i].checks);
+      const SceneCheckResult* unstable_j = first_instability(result.runs[j].checks);
       if ((unstable_i == nullptr) != (unstable_j == nullptr)) {
-        const CheckResult& failed = unstable_i ? *unstable_i : *unstable_j;
+        const SceneCheckResult& failed = unstable_i ? *unstable_i : *unstable_j;
         p.verdict = "unstable";
         p.unstable_engine = unstable_i ? names[i] : names[j];
         p.instability = describe(failed);

@@ -11,14 +11,14 @@
 #include <string_view>
 #include <vector>
 
-#include "reference/settings.hpp"
-#include "sim/engine.hpp"
-#include "sim/metrics.hpp"
-#include "sim/scene.hpp"
-#include "validation/contact_diff.hpp"
-#include "validation/stability_checks.hpp"
-#include "validation/recording.hpp"
-#include "validation/stacks.hpp"
+#include "boxpile/reference/settings.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/metrics.hpp"
+#include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/recording.hpp"
+#include "boxpile/validation/stability_checks.hpp"
+#include "boxpile/validation/stacks.hpp"
 
 namespace boxpile {
 
@@ -96,7 +96,7 @@ struct EngineRun {
   std::uint64_t engine_messages = 0;  // ODE's messages during the run
   // The scene's checks (validation/stability_checks.hpp), measured at every step.
   RunMeasures measures;
-  std::vector<CheckResult> checks;
+  std::vector<SceneCheckResult> checks;
 };
 
 // One body's difference between two runs of the same scene over the recorded frames.
@@ -143,13 +143,22 @@ struct PairComparison {
   std::string instability;      // its failed check, e.g. "energy_rise 0.11 > 0.0001"
 };
 
-// One touching pair of boxes (or a box and the ground) at a checked frame, through all three
-// detectors: our collide_box_box / collide_box_plane, ODE's dCollide, Bullet's detector.
+// One detector's contact set of a pair: its point count and how it differs from ours.
+struct DetectorCheck {
+  std::string detector;
+  int points = 0;
+  ContactDiff diff;  // against ours (ours against itself for "own")
+};
+
+// One touching pair of boxes (or a box and the ground) at a checked frame, through every
+// detector of the table that applies to box-box and box-plane alike (validation/detectors.hpp):
+// ours first, then ODE's and Bullet's.
 struct ContactPairCheck {
   int body_a = 0, shape_a = 0;
   int body_b = kGround, shape_b = 0;
-  int own_points = 0, ode_points = 0, bullet_points = 0;
-  ContactDiff ode, bullet;  // each against ours
+  std::vector<DetectorCheck> detectors;
+  // The check of one detector (it must be among them).
+  const DetectorCheck& of(std::string_view detector) const;
 };
 
 // The largest disagreement of one kind at a checked frame: "normal_angle" between the mean
@@ -159,7 +168,7 @@ struct ContactPairCheck {
 // listed.
 struct ContactDisagreement {
   std::string metric;
-  std::string reference;  // "ode" or "bullet"
+  std::string reference;  // a detector other than ours: "ode" or "bullet"
   double value = 0.0;
   ContactPairCheck pair;
 };
@@ -170,7 +179,7 @@ struct ContactFrameCheck {
   std::size_t frame = 0;
   double t = 0.0;
   int pairs = 0;            // touching pairs checked
-  int count_mismatches = 0;  // pairs where the three detectors give different point counts
+  int count_mismatches = 0;  // pairs where the detectors give different point counts
   std::vector<ContactDisagreement> worst;  // largest first within each metric
 };
 

@@ -1,10 +1,10 @@
-#include "validation/recording.hpp"
+#include "boxpile/validation/recording.hpp"
 
 #include <unordered_map>
 #include <utility>
 
-#include "sim/io/json_input.hpp"
-#include "validation/cli/json_output.hpp"
+#include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/validation/json_output.hpp"
 
 namespace boxpile {
 namespace {

@@ -10,10 +10,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/engine.hpp"
-#include "sim/scene.hpp"
-#include "validation/run_loop.hpp"
-#include "validation/state_meter.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/run_loop.hpp"
+#include "boxpile/validation/state_meter.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "validation/replay_data.hpp"
+#include "boxpile/validation/replay_data.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 
-#include "sim/io/json_input.hpp"
+#include "boxpile/sim/io/json_input.hpp"
 
 namespace boxpile {
 namespace {

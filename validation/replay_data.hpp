@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "validation/recording.hpp"
+#include "boxpile/validation/recording.hpp"
 
 namespace boxpile {
 

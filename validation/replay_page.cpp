@@ -1,11 +1,11 @@
-#include "validation/replay_page.hpp"
+#include "boxpile/validation/replay_page.hpp"
 
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string_view>
 
-#include "validation/cli/json_output.hpp"
+#include "boxpile/validation/json_output.hpp"
 
 namespace boxpile {
 namespace replay_assets {

@@ -1,4 +1,4 @@
-#include "validation/report.hpp"
+#include "boxpile/validation/report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "validation/cli/json_output.hpp"
-#include "validation/replay_data.hpp"
-#include "validation/replay_page.hpp"
+#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/json_output.hpp"
+#include "boxpile/validation/replay_data.hpp"
+#include "boxpile/validation/replay_page.hpp"
 
 namespace boxpile {
 namespace {
@@ -140,16 +141,21 @@ json contacts_json(const CompareResult& r, const ContactFrameCheck& c) {
   json worst = json::array();
   for (const ContactDisagreement& w : c.worst) {
     const ContactPairCheck& p = w.pair;
-    worst.push_back({{"metric", w.metric},
-                     {"reference", w.reference},
-                     {"value", w.value},
-                     {"body_a", body_name(r.scene, p.body_a)},
-                     {"shape_a", p.shape_a},
-                     {"body_b", body_name(r.scene, p.body_b)},
-                     {"shape_b", p.shape_b},
-                     {"points", {{"own", p.own_points}, {"ode", p.ode_points}, {"bullet", p.bullet_points}}},
-                     {"ode", diff_json(p.ode)},
-                     {"bullet", diff_json(p.bullet)}});
+    json entry = {{"metric", w.metric},
+                  {"reference", w.reference},
+                  {"value", w.value},
+                  {"body_a", body_name(r.scene, p.body_a)},
+                  {"shape_a", p.shape_a},
+                  {"body_b", body_name(r.scene, p.body_b)},
+                  {"shape_b", p.shape_b}};
+    // "points": every detector's count; then each other detector's diff against ours by its name.
+    json points = json::object();
+    for (const DetectorCheck& d : p.detectors) points[d.detector] = d.points;
+    entry["points"] = points;
+    for (const DetectorCheck& d : p.detectors) {
+      if (d.detector != kOwnDetector) entry[d.detector] = diff_json(d.diff);
+    }
+    worst.push_back(std::move(entry));
   }
   return {{"engine", c.engine}, {"why", c.why},     {"frame", c.frame},
           {"t", c.t},           {"pairs", c.pairs}, {"count_mismatches", c.count_mismatches},
@@ -370,9 +376,11 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
   return plots;
 }
 
-std::string report_markdown(const CompareResult& r, const std::vector<std::string>& plots,
-                            const std::vector<std::string>& notes) {
-  std::ostringstream md;
+namespace {
+
+// --- report.md, one section per writer ---------------------------------------------------------
+
+void write_md_run(std::ostream& md, const CompareResult& r) {
   const Scene& s = r.scene;
   md << "# boxpile compare: " << s.name << "\n\n";
   if (!s.note.empty()) md << s.note << "\n\n";
@@ -397,11 +405,16 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
 
   md << "Watch the runs side by side in [replay.html](replay.html) (open it in a browser; docs/viewer.md "
         "describes it).\n\n";
+}
+
+void write_md_engines(std::ostream& md, const CompareResult& r) {
   md << "## Per engine\n\n" << markdown_table(engine_header(r, "metric"), engine_rows(r)) << '\n';
   md << "Energy is measured the same way for every engine from its body states (the scene's bodies "
         "only). Impacts are pairs approaching faster than resting contact explains, found the same way "
         "for every engine from the contact set of each step and the velocities before it.\n\n";
+}
 
+void write_md_stacks(std::ostream& md, const CompareResult& r) {
   md << "### Stacks at the end\n\n";
   for (const EngineRun& run : r.runs) {
     md << "- " << run.engine << ": ";
@@ -415,31 +428,35 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
     md << '\n';
   }
   md << '\n';
+}
 
-  if (!r.pairs.empty()) {
-    md << "## Between engines\n\n"
-       << "| engines | largest position difference | largest orientation difference | passes "
-       << fmt(r.settings.position_threshold) << " m | engines diverge from themselves | verdict |\n"
-       << "|---|---:|---:|---:|---:|---|\n";
-    for (const PairComparison& p : r.pairs) {
-      const RunDifference& d = p.difference;
-      md << "| " << d.a << " vs " << d.b << " | " << fmt(d.largest_position, "%.3g") << " m ("
-         << d.largest_position_body
-         << ") | " << fmt(d.largest_orientation, "%.3g") << " rad (" << d.largest_orientation_body << ") | "
-         << optional_seconds(d.position_passes) << " | " << optional_seconds(p.chaos_time) << " | "
-         << verdict_text(p) << " |\n";
-    }
-    md << "\nA pair *differs* when its position difference passes the threshold earlier than half the time "
-          "either engine takes to pass it against its own perturbed run; later than that, chaos "
-          "explains it.\n\n";
+void write_md_pairs(std::ostream& md, const CompareResult& r) {
+  if (r.pairs.empty()) return;
+  md << "## Between engines\n\n"
+     << "| engines | largest position difference | largest orientation difference | passes "
+     << fmt(r.settings.position_threshold) << " m | engines diverge from themselves | verdict |\n"
+     << "|---|---:|---:|---:|---:|---|\n";
+  for (const PairComparison& p : r.pairs) {
+    const RunDifference& d = p.difference;
+    md << "| " << d.a << " vs " << d.b << " | " << fmt(d.largest_position, "%.3g") << " m ("
+       << d.largest_position_body
+       << ") | " << fmt(d.largest_orientation, "%.3g") << " rad (" << d.largest_orientation_body << ") | "
+       << optional_seconds(d.position_passes) << " | " << optional_seconds(p.chaos_time) << " | "
+       << verdict_text(p) << " |\n";
   }
+  md << "\nA pair *differs* when its position difference passes the threshold earlier than half the time "
+        "either engine takes to pass it against its own perturbed run; later than that, chaos "
+        "explains it.\n\n";
+}
 
-  if (!plots.empty()) {
-    md << "## Plots\n\n";
-    for (const std::string& p : plots) md << "![" << p << "](" << p << ".svg)\n\n";
-    md << "Each plot's data (`NAME.dat`) and gnuplot script (`NAME.gp`) are beside it.\n\n";
-  }
+void write_md_plots(std::ostream& md, const std::vector<std::string>& plots) {
+  if (plots.empty()) return;
+  md << "## Plots\n\n";
+  for (const std::string& p : plots) md << "![" << p << "](" << p << ".svg)\n\n";
+  md << "Each plot's data (`NAME.dat`) and gnuplot script (`NAME.gp`) are beside it.\n\n";
+}
 
+void write_md_largest(std::ostream& md, const CompareResult& r) {
   md << "## Largest disagreements\n\n";
   for (const PairComparison& p : r.pairs) {
     std::vector<const BodyDifference*> bodies;
@@ -454,6 +471,35 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
     md << '\n';
   }
   md << '\n';
+}
+
+void write_md_contact_check(std::ostream& md, const Scene& s, const ContactFrameCheck& c) {
+  md << "### Contact sets at t = " << seconds(c.t) << " (" << c.why << ", " << c.engine << "'s poses)\n\n"
+     << c.pairs << " touching pairs, each through our detector, ODE's and Bullet's; " << c.count_mismatches
+     << " give different point counts.\n\n";
+  if (c.worst.empty()) {
+    md << "No disagreement above rounding (1e-9) in normals, deepest depths or contact regions.\n\n";
+    return;
+  }
+  const std::vector<DetectorCheck>& shown = c.worst.front().pair.detectors;
+  md << "| largest | against | value | pair | points";
+  for (std::size_t k = 0; k < shown.size(); ++k) md << (k ? " / " : " ") << shown[k].detector;
+  md << " |\n|---|---|---:|---|---|\n";
+  for (const ContactDisagreement& w : c.worst) {
+    const ContactPairCheck& pc = w.pair;
+    const bool angle = w.metric == "normal_angle";
+    md << "| " << w.metric << " | " << w.reference << " | " << fmt(w.value, "%.3g") << (angle ? " rad" : " m")
+       << " | "
+       << body_name(s, pc.body_a) << "[" << pc.shape_a << "] / " << body_name(s, pc.body_b);
+    if (pc.body_b != kGround) md << "[" << pc.shape_b << "]";
+    md << " |";
+    for (std::size_t k = 0; k < pc.detectors.size(); ++k) md << (k ? " / " : " ") << pc.detectors[k].points;
+    md << " |\n";
+  }
+  md << '\n';
+}
+
+void write_md_contacts(std::ostream& md, const CompareResult& r) {
   if (!r.contacts.empty()) {
     md << "Contact sets below: on one engine's poses, every pair of boxes within "
        << fmt(r.settings.touch_tolerance) << " m (and every box near the ground) through all three detectors, "
@@ -461,26 +507,10 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
        << "deepest points, `point_distance` how far the smaller point set lies outside the contact region of "
        << "the larger (0 when one lies within the other's). The largest of each kind is listed.\n\n";
   }
-  for (const ContactFrameCheck& c : r.contacts) {
-    md << "### Contact sets at t = " << seconds(c.t) << " (" << c.why << ", " << c.engine << "'s poses)\n\n"
-       << c.pairs << " touching pairs, each through our detector, ODE's and Bullet's; " << c.count_mismatches
-       << " give different point counts.\n\n";
-    if (c.worst.empty()) {
-      md << "No disagreement above rounding (1e-9) in normals, deepest depths or contact regions.\n\n";
-      continue;
-    }
-    md << "| largest | against | value | pair | points own / ode / bullet |\n|---|---|---:|---|---|\n";
-    for (const ContactDisagreement& w : c.worst) {
-      const ContactPairCheck& pc = w.pair;
-      const bool angle = w.metric == "normal_angle";
-      md << "| " << w.metric << " | " << w.reference << " | " << fmt(w.value, "%.3g") << (angle ? " rad" : " m")
-         << " | "
-         << body_name(s, pc.body_a) << "[" << pc.shape_a << "] / " << body_name(s, pc.body_b);
-      if (pc.body_b != kGround) md << "[" << pc.shape_b << "]";
-      md << " | " << pc.own_points << " / " << pc.ode_points << " / " << pc.bullet_points << " |\n";
-    }
-    md << '\n';
-  }
+  for (const ContactFrameCheck& c : r.contacts) write_md_contact_check(md, r.scene, c);
+}
+
+void write_md_notes(std::ostream& md, const std::vector<std::string>& notes) {
   if (!notes.empty()) {
     md << "## Notes\n\n";
     for (const std::string& n : notes) md << "- " << n << '\n';
@@ -488,6 +518,21 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
   }
   md << "How to read this report: docs/compare.md in the boxpile sources. The same figures, and the "
         "series behind the plots, are in report.json.\n";
+}
+
+}  // namespace
+
+std::string report_markdown(const CompareResult& r, const std::vector<std::string>& plots,
+                            const std::vector<std::string>& notes) {
+  std::ostringstream md;
+  write_md_run(md, r);
+  write_md_engines(md, r);
+  write_md_stacks(md, r);
+  write_md_pairs(md, r);
+  write_md_plots(md, plots);
+  write_md_largest(md, r);
+  write_md_contacts(md, r);
+  write_md_notes(md, notes);
   return md.str();
 }
 

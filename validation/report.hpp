@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "validation/compare.hpp"
-#include "validation/plots.hpp"
+#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/plots.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "validation/report_directory.hpp"
+#include "boxpile/validation/report_directory.hpp"
 
 #include <fcntl.h>
 #include <stdio.h>  // renameat2 (glibc 2.28)
@@ -36,8 +36,8 @@ void check_target(const fs::path& target, const std::string& marker) {
 
 }  // namespace
 
-ReportDirectory::ReportDirectory(fs::path target, const std::string& marker)
-    : target_(std::move(target)), marker_(marker) {
+ReportDirectory::ReportDirectory(fs::path target, std::string marker)
+    : target_(std::move(target)), marker_(std::move(marker)) {
   if (target_.empty()) refuse(target_, "no directory given");
   // "out/" names the directory "out": drop the trailing separator, so that its parent is found.
   if (!target_.has_filename()) target_ = target_.parent_path();

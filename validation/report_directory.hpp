@@ -20,10 +20,9 @@ class ReportDirectoryError : public std::runtime_error {
 class ReportDirectory {
  public:
   // Checks `target` and creates the staging directory (and any missing parents of `target`).
-  // An existing `target` is accepted only if it is empty or holds `marker`, the file that marks
-  // a boxpile report of this kind (it will be replaced); anything else is refused rather than
-  // deleted.
-  explicit ReportDirectory(std::filesystem::path target, const std::string& marker = "report.json");
+  // An existing `target` is accepted only if it is empty or holds `marker`, the one file that
+  // marks a boxpile report (it will be replaced); anything else is refused rather than deleted.
+  explicit ReportDirectory(std::filesystem::path target, std::string marker = "report.json");
   ~ReportDirectory();
   ReportDirectory(const ReportDirectory&) = delete;
   ReportDirectory& operator=(const ReportDirectory&) = delete;

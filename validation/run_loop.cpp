@@ -1,4 +1,4 @@
-#include "validation/run_loop.hpp"
+#include "boxpile/validation/run_loop.hpp"
 
 #include <chrono>
 #include <utility>

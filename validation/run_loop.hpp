@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/engine.hpp"
+#include "boxpile/sim/engine.hpp"
 
 namespace boxpile {
 

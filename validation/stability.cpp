@@ -1,4 +1,4 @@
-#include "validation/stability.hpp"
+#include "boxpile/validation/stability.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <memory>
 
-#include "sim/io/input_error.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/run_loop.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/run_loop.hpp"
 
 namespace boxpile {
 namespace {

@@ -9,9 +9,9 @@
 #include <string_view>
 #include <vector>
 
-#include "reference/settings.hpp"
-#include "sim/scene.hpp"
-#include "validation/stability_checks.hpp"
+#include "boxpile/reference/settings.hpp"
+#include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/stability_checks.hpp"
 
 namespace boxpile {
 
@@ -38,7 +38,7 @@ struct StabilityCell {
   std::string scene;
   std::string engine;
   bool passed = false;
-  std::vector<CheckResult> checks;
+  std::vector<SceneCheckResult> checks;
   RunMeasures measures;
   long steps = 0;  // steps run (fewer than the scene's when a state became NaN)
   double us_per_step = 0.0;

@@ -1,4 +1,4 @@
-#include "validation/stability_checks.hpp"
+#include "boxpile/validation/stability_checks.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +29,7 @@ double kinetic_energy(const RigidBody& b) {
   return 0.5 * b.mass * b.v.squaredNorm() + 0.5 * b.omega.dot(b.R * b.inertia_body * b.R.transpose() * b.omega);
 }
 
-CheckResult at_most(std::string name, double value, double limit, std::string unit) {
+SceneCheckResult at_most(std::string name, double value, double limit, std::string unit) {
   return {std::move(name), value, limit, false, value <= limit, std::move(unit)};
 }
 
@@ -125,9 +125,9 @@ void RunMonitor::observe_rebound(const std::vector<BodyState>& states) {
   }
 }
 
-std::vector<CheckResult> RunMonitor::evaluate() const {
+std::vector<SceneCheckResult> RunMonitor::evaluate() const {
   const SceneChecks& c = scene_.checks;
-  std::vector<CheckResult> out;
+  std::vector<SceneCheckResult> out;
   out.push_back({"finite", m_.finite ? 1.0 : 0.0, 1.0, true, m_.finite, ""});
   if (!m_.finite) return out;  // nothing else means anything once a state is NaN
 
@@ -158,8 +158,8 @@ std::vector<CheckResult> RunMonitor::evaluate() const {
   return out;
 }
 
-const CheckResult* first_instability(const std::vector<CheckResult>& results) {
-  for (const CheckResult& r : results) {
+const SceneCheckResult* first_instability(const std::vector<SceneCheckResult>& results) {
+  for (const SceneCheckResult& r : results) {
     if (r.passed) continue;
     if (r.name == "finite" || r.name == "energy_rise" || r.name == "energy_conserved" || r.name == "rest_kinetic" ||
         r.name == "rest_move")
@@ -168,7 +168,7 @@ const CheckResult* first_instability(const std::vector<CheckResult>& results) {
   return nullptr;
 }
 
-std::string describe(const CheckResult& r) {
+std::string describe(const SceneCheckResult& r) {
   if (r.name == "finite") return r.passed ? "finite" : "NaN";
   auto fmt = [](double x) {
     char buf[32];
@@ -179,14 +179,14 @@ std::string describe(const CheckResult& r) {
   return r.name + " " + fmt(r.value) + (r.unit.empty() ? "" : " " + r.unit) + " " + relation + " " + fmt(r.limit);
 }
 
-bool all_passed(const std::vector<CheckResult>& results) {
-  return std::all_of(results.begin(), results.end(), [](const CheckResult& r) { return r.passed; });
+bool all_passed(const std::vector<SceneCheckResult>& results) {
+  return std::all_of(results.begin(), results.end(), [](const SceneCheckResult& r) { return r.passed; });
 }
 
-const CheckResult* deciding_check(const std::vector<CheckResult>& results) {
-  const CheckResult* closest = nullptr;
+const SceneCheckResult* deciding_check(const std::vector<SceneCheckResult>& results) {
+  const SceneCheckResult* closest = nullptr;
   double closest_ratio = -std::numeric_limits<double>::infinity();
-  for (const CheckResult& r : results) {
+  for (const SceneCheckResult& r : results) {
     if (!r.passed) return &r;
     // How much of its limit a passing check used (at-least checks: how close to the limit).
     const double ratio = r.at_least ? -r.value : (r.limit > 0.0 ? r.value / r.limit : 0.0);

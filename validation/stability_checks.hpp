@@ -12,14 +12,14 @@
 #include <string>
 #include <vector>
 
-#include "sim/engine.hpp"
-#include "sim/metrics.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/metrics.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 
-// One check's outcome: the measured value against its limit.
-struct CheckResult {
+// One scene check's outcome (SceneChecks): the measured value against its limit.
+struct SceneCheckResult {
   std::string name;   // "energy_rise", "rest_kinetic", "rest_move", "no_turning", "rebound", "slide mu_0.30", ...
   double value = 0.0;
   double limit = 0.0;
@@ -65,7 +65,7 @@ class RunMonitor {
   bool finite() const { return m_.finite; }
 
   // The scene's checks against the measures so far (call after the last step).
-  std::vector<CheckResult> evaluate() const;
+  std::vector<SceneCheckResult> evaluate() const;
 
  private:
   void observe_rebound(const std::vector<BodyState>& states);
@@ -86,15 +86,15 @@ class RunMonitor {
 // The first failed check that shows instability rather than inaccuracy: a NaN, energy that rose
 // (or, e = 1, was not conserved), or resting bodies that kept moving. `boxpile compare` names an
 // engine with such a failure when the other engine of a pair has none. nullptr when none failed.
-const CheckResult* first_instability(const std::vector<CheckResult>& results);
+const SceneCheckResult* first_instability(const std::vector<SceneCheckResult>& results);
 
 // The check's figure against its limit, e.g. "energy_rise 0.11 > 0.0001" or "rest_move 2e-06 m <= 0.001".
-std::string describe(const CheckResult& result);
+std::string describe(const SceneCheckResult& result);
 
 // Whether every result passed (an empty list passes).
-bool all_passed(const std::vector<CheckResult>& results);
+bool all_passed(const std::vector<SceneCheckResult>& results);
 // The first failing result, or the result that came closest to its limit when all passed: the
 // figure a report shows for the cell.
-const CheckResult* deciding_check(const std::vector<CheckResult>& results);
+const SceneCheckResult* deciding_check(const std::vector<SceneCheckResult>& results);
 
 }  // namespace boxpile

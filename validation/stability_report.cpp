@@ -1,4 +1,4 @@
-#include "validation/stability_report.hpp"
+#include "boxpile/validation/stability_report.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -46,11 +46,11 @@ std::string plot_stem(const StabilityCell& c) { return c.scene + "_" + c.engine;
 }  // namespace
 
 std::string cell_text(const StabilityCell& cell) {
-  const CheckResult* deciding = deciding_check(cell.checks);
+  const SceneCheckResult* deciding = deciding_check(cell.checks);
   std::string s = cell.passed ? "pass" : "**FAIL**";
   if (deciding) s += ": " + describe(*deciding);
   int failures = 0;
-  for (const CheckResult& r : cell.checks) failures += r.passed ? 0 : 1;
+  for (const SceneCheckResult& r : cell.checks) failures += r.passed ? 0 : 1;
   if (failures > 1) s += " (+" + std::to_string(failures - 1) + " more)";
   return s;
 }
@@ -59,7 +59,7 @@ json stability_json(const StabilityResult& r) {
   json cells = json::array();
   for (const StabilityCell& c : r.cells) {
     json checks = json::array();
-    for (const CheckResult& k : c.checks) {
+    for (const SceneCheckResult& k : c.checks) {
       checks.push_back({{"name", k.name}, {"value", number(k.value)}, {"limit", number(k.limit)},
                         {"relation", k.at_least ? ">=" : "<="}, {"unit", k.unit}, {"passed", k.passed}});
     }

@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "validation/plots.hpp"
-#include "validation/stability.hpp"
+#include "boxpile/validation/plots.hpp"
+#include "boxpile/validation/stability.hpp"
 
 namespace boxpile {
 

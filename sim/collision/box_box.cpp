@@ -8,14 +8,14 @@
 // edge directions Ai x Bj. If s(L) > 0 for any L the boxes are apart; otherwise the axis with the
 // largest s (least penetration) is the contact normal and -s is the depth (Erleben's thesis,
 // sec. 9.1, pp. 178-183).
-#include "sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 
-#include "sim/collision/reduce.hpp"
+#include "boxpile/sim/collision/reduce.hpp"
 
 namespace boxpile {
 namespace {

@@ -1,4 +1,4 @@
-#include "sim/collision/broadphase.hpp"
+#include "boxpile/sim/collision/broadphase.hpp"
 
 #include <limits>
 #include <numeric>

@@ -5,8 +5,8 @@
 #include <utility>
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/step_storage.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/step_storage.hpp"
 
 namespace boxpile {
 

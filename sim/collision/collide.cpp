@@ -1,10 +1,10 @@
-#include "sim/collision/collide.hpp"
+#include "boxpile/sim/collision/collide.hpp"
 
 #include <algorithm>
 #include <limits>
 
-#include "sim/collision/box_box.hpp"
-#include "sim/collision/box_plane.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
 
 namespace boxpile {
 namespace {

@@ -5,10 +5,10 @@
 #include <span>
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/collision/box.hpp"
-#include "sim/collision/contact.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "sim/io/json_input.hpp"
+#include "boxpile/sim/io/json_input.hpp"
 
 #include <algorithm>
 #include <cerrno>

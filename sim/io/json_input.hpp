@@ -14,9 +14,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/input_error.hpp"
-#include "sim/math.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/math.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile::json_input {
 

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "sim/io/input_error.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

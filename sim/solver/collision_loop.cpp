@@ -1,18 +1,14 @@
-#include "sim/solver/collision_loop.hpp"
+#include "boxpile/sim/solver/collision_loop.hpp"
 
 #include <algorithm>
 #include <cassert>
 #include <span>
 
-#include "sim/solver/pair_impulse.hpp"
+#include "boxpile/sim/solver/pair_impulse.hpp"
 
 namespace boxpile {
 
 namespace {
-// An approach faster than this counts as a collision event: well above the |g| dt that gravity
-// adds to a resting contact in one step, and above rounding.
-constexpr double kEventSpeedMin = 0.01;  // m/s
-constexpr double kEventSpeedGravitySteps = 2.0;
 // A touching point approaching slower than this (m/s) is not a collision but rounding left by the
 // previous step's resting phases (they converge to 1e-9 m/s); the contact loop takes it. Far
 // below the g dt = 0.04 m/s a resting contact gains per step, so no impact is missed.
@@ -46,7 +42,7 @@ void collision_loop(ImpulseStep& step) {
   const bool friction = scene.effects.friction;
   const double time = step.world.time;
   const double dt = step.world.dt;
-  const double event_speed = std::max(kEventSpeedMin, kEventSpeedGravitySteps * scene.gravity.norm() * dt);
+  const double event_speed = collision_event_speed(scene, dt);
   ImpulseCounters& counters = step.world.counters.impulses;
   StepStats& stats = step.world.stats;
   std::vector<CollisionEvent>& events = step.world.events;

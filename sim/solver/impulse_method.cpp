@@ -1,8 +1,8 @@
-#include "sim/solver/impulse_method.hpp"
+#include "boxpile/sim/solver/impulse_method.hpp"
 
-#include "sim/solver/collision_loop.hpp"
-#include "sim/solver/contact_loop.hpp"
-#include "sim/solver/integrate.hpp"
+#include "boxpile/sim/solver/collision_loop.hpp"
+#include "boxpile/sim/solver/contact_loop.hpp"
+#include "boxpile/sim/solver/integrate.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "sim/solver/pair_impulse.hpp"
+#include "boxpile/sim/solver/pair_impulse.hpp"
 
 #include <algorithm>
 #include <array>

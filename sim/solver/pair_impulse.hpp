@@ -13,7 +13,7 @@
 
 #include <span>
 
-#include "sim/solver/impulse_step.hpp"
+#include "boxpile/sim/solver/impulse_step.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "sim/solver/recovery.hpp"
+#include "boxpile/sim/solver/recovery.hpp"
 
 #include <algorithm>
 

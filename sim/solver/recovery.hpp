@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "sim/solver/impulse_step.hpp"
-#include "sim/step_storage.hpp"
+#include "boxpile/sim/solver/impulse_step.hpp"
+#include "boxpile/sim/step_storage.hpp"
 
 namespace boxpile {
 

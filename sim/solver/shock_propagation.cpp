@@ -1,4 +1,4 @@
-#include "sim/solver/shock_propagation.hpp"
+#include "boxpile/sim/solver/shock_propagation.hpp"
 
 #include <algorithm>
 

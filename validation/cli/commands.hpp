@@ -1,6 +1,7 @@
 // The boxpile subcommands. Each registers its options on the CLI11 app and returns the exit code.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,15 +17,38 @@ inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitInterrupted = 130;
 
-// `boxpile contacts QUERY.json [--reduce] [--engines LIST]`: the contact sets of one query from
-// our detector and the reference engines, with a diff of each reference against ours, on stdout.
+// `boxpile contacts QUERY.json [--reduce] [--engines LIST] [--format table|json]`: the contact
+// sets of one query from the registered detectors (and any answers saved in the file), with a
+// diff of each against ours; a table on a terminal, JSON when piped or asked.
+// `boxpile contacts --serve [--engine NAME]`: the line protocol of `boxpile conform` on stdin and
+// stdout, answered by one detector.
 struct ContactsOptions {
   std::string query;
   bool reduce = false;
   std::vector<std::string> engines;  // empty: the default set
+  std::string format;                // "table" or "json"; empty: table on a terminal
+  bool serve = false;
+  std::string engine = "own";        // the detector that answers under --serve
 };
 void add_contacts_command(CLI::App& app, ContactsOptions& options);
 int run_contacts(const ContactsOptions& options);
+
+// `boxpile conform --collider CMD [--samples N] [--seed S] [--cases DIR] [--regimes LIST]
+// [--timeout S] --report DIR`: judges an outside collider through the line protocol
+// (docs/conform.md). Exit 0 within the gates, 1 not, 2 on bad input or a collider that dies,
+// hangs or answers garbage.
+struct ConformOptions {
+  std::string collider;
+  int samples = 1000;
+  std::uint64_t seed = 1;
+  std::string cases;                 // empty: the installed fixtures/contacts; "none": no cases
+  std::vector<std::string> regimes;  // empty: all
+  double timeout = 10.0;             // s per answer
+  bool no_swap = false;
+  std::string report;
+};
+void add_conform_command(CLI::App& app, ConformOptions& options);
+int run_conform_command(const ConformOptions& options);
 
 // `boxpile run SCENE.json --engine NAME [--dt DT] [--duration T] [--every K] [--out FILE.json]`:
 // steps the scene in one engine; writes the recorded frames to FILE.json, or prints a summary.

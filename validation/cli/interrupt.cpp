@@ -1,4 +1,4 @@
-#include "validation/cli/interrupt.hpp"
+#include "boxpile/validation/cli/interrupt.hpp"
 
 namespace boxpile::cli {
 namespace {

@@ -1,10 +1,23 @@
 // boxpile: run box-pile scenes in our simulator and in ODE and Bullet, and compare them.
 #include <iostream>
 
-#include "sim/io/input_error.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/report_directory.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/collider_process.hpp"
+#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/report_directory.hpp"
+
+namespace {
+
+// Errors of the user's input (a file, a name, a folder, a collider): exit 2; anything else 1.
+bool is_bad_input(const std::exception& e) {
+  return dynamic_cast<const boxpile::InputError*>(&e) || dynamic_cast<const boxpile::UnknownEngine*>(&e) ||
+         dynamic_cast<const boxpile::UnknownDetector*>(&e) || dynamic_cast<const boxpile::ColliderError*>(&e) ||
+         dynamic_cast<const boxpile::ReportDirectoryError*>(&e);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace boxpile::cli;
@@ -23,6 +36,8 @@ int main(int argc, char** argv) {
   add_compare_command(app, compare);
   StabilityOptions stability;
   add_stability_command(app, stability);
+  ConformOptions conform;
+  add_conform_command(app, conform);
   ViewOptions view;
   add_view_command(app, view);
 
@@ -42,22 +57,14 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) return run_run(run);
     if (app.got_subcommand("compare")) return run_compare_command(compare);
     if (app.got_subcommand("stability")) return run_stability_command(stability);
+    if (app.got_subcommand("conform")) return run_conform_command(conform);
     if (app.got_subcommand("view")) return run_view(view);
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());
-  } catch (const boxpile::InputError& e) {
-    std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitBadInput;
-  } catch (const boxpile::UnknownEngine& e) {
-    std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitBadInput;
-  } catch (const boxpile::ReportDirectoryError& e) {
-    std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitFailure;
+    return is_bad_input(e) ? kExitBadInput : kExitFailure;
   }
   return kExitFailure;
 }

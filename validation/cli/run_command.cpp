@@ -3,15 +3,14 @@
 #include <iostream>
 #include <limits>
 
-#include "reference/ode_engine.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/cli/json_output.hpp"
-#include "sim/world.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/recording.hpp"
-#include "validation/run_loop.hpp"
-#include "validation/state_meter.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/json_output.hpp"
+#include "boxpile/validation/recording.hpp"
+#include "boxpile/validation/run_loop.hpp"
+#include "boxpile/validation/state_meter.hpp"
 
 namespace boxpile::cli {
 namespace {
@@ -22,16 +21,16 @@ constexpr std::size_t kSummaryBodyLimit = 10;
 // Our solver's statistics of its last step. Impulse method: passes used and the residual
 // (largest approaching normal velocity, m/s) after each pass, for the convergence plots. Penalty
 // method: its substeps and the work of its springs and anchors so far.
-nlohmann::json solver_json(const World& world) {
-  if (world.scene().solver.method == ContactSolver::Penalty) {
-    const PenaltyCounters& p = world.counters().penalty;
+nlohmann::json solver_json(std::string_view method, const StepStats& st, const WorldCounters& counters,
+                           std::size_t events) {
+  if (method == "penalty") {
+    const PenaltyCounters& p = counters.penalty;
     return {{"method", "penalty"},
-            {"substeps", world.counters().penalty_substeps},
+            {"substeps", counters.penalty_substeps},
             {"spring_evaluations", p.spring_evaluations},
             {"anchors_created", p.anchors_created},
             {"sliding_points", p.sliding_points}};
   }
-  const StepStats& st = world.last_step_stats();
   nlohmann::json collision = nlohmann::json::array(), contact = nlohmann::json::array();
   for (int k = 0; k < st.collision_passes_used; ++k) collision.push_back(st.collision_residual[k]);
   for (int k = 0; k < st.contact_passes_used; ++k) contact.push_back(st.contact_residual[k]);
@@ -41,7 +40,7 @@ nlohmann::json solver_json(const World& world) {
           {"contact_residuals", contact},
           {"shock_levels", st.shock_levels},
           {"residual_after_shock", st.residual_after_shock},
-          {"collision_events", world.events().size()}};
+          {"collision_events", events}};
 }
 
 std::string format(double x, const char* fmt = "%.6g") {
@@ -118,7 +117,6 @@ int run_run(const RunOptions& options) {
   }
   const std::unique_ptr<Engine> engine = make_engine(options.engine, scene, settings);
   const bool record = !options.out.empty();
-  const auto* own = dynamic_cast<const World*>(engine.get());
 
   Recorder recorder(scene, options.engine);
   std::vector<nlohmann::json> solver;  // our solver's statistics, per frame
@@ -126,7 +124,13 @@ int run_run(const RunOptions& options) {
   if (record) {
     hooks.frame = [&](const StepView& v) {
       recorder.frame(v);
-      if (own) solver.push_back({{"solver", solver_json(*own)}});
+      const StepStats* stats = engine->solver_stats();
+      const WorldCounters* counters = engine->solver_counters();
+      if (stats && counters) {
+        const auto* events = engine->collision_events();
+        solver.push_back({{"solver", solver_json(engine->contact_method(), *stats, *counters,
+                                                 events ? events->size() : 0)}});
+      }
     };
   }
   const RunLoopResult loop = run_loop(*engine, dt, steps, options.every, hooks);
@@ -137,16 +141,16 @@ int run_run(const RunOptions& options) {
               << "\" is not finite after step " << loop.stopped->step << " (t = " << format(loop.stopped->t)
               << " s): the run stopped there\n";
   }
-  if (const auto* ode = dynamic_cast<const OdeEngine*>(engine.get()); ode && ode->messages() > 0) {
-    std::cerr << "boxpile: note: ODE reported " << ode->messages() << " message(s); the last: "
-              << ode_messages().last << '\n';
+  if (engine->messages() > 0) {
+    std::cerr << "boxpile: note: " << engine->name() << " reported " << engine->messages() << " message(s); the last: "
+              << engine->last_message() << '\n';
   }
 
   if (record) {
     recorder.recording().stopped = loop.stopped;
     nlohmann::json events = nlohmann::json::array();
-    if (own) {
-      for (const CollisionEvent& e : own->events()) {
+    if (const auto* recorded = engine->collision_events()) {
+      for (const CollisionEvent& e : *recorded) {
         events.push_back({{"t", e.time}, {"body_a", states[e.body_a].name},
                           {"body_b", e.body_b == kGround ? std::string("ground") : states[e.body_b].name},
                           {"impulse", e.impulse}, {"approach_speed", e.approach_speed}});

@@ -5,13 +5,14 @@
 #include <filesystem>
 #include <iostream>
 
-#include "sim/io/scene_loader.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/cli/interrupt.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/report_directory.hpp"
-#include "validation/stability.hpp"
-#include "validation/stability_report.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/interrupt.hpp"
+#include "boxpile/validation/data_directory.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/report_directory.hpp"
+#include "boxpile/validation/stability.hpp"
+#include "boxpile/validation/stability_report.hpp"
 
 namespace boxpile::cli {
 namespace {
@@ -67,7 +68,7 @@ void add_stability_command(CLI::App& app, StabilityOptions& options) {
 int run_stability_command(const StabilityOptions& options) {
   // Every input is checked before the first run: scenes, engines, the report directory.
   std::vector<Scene> scenes;
-  for (const std::string& file : catalogue_files(options.scenes.empty() ? std::vector<std::string>{BOXPILE_HARD_SCENES}
+  for (const std::string& file : catalogue_files(options.scenes.empty() ? std::vector<std::string>{data_path("fixtures/hard").string()}
                                                                         : options.scenes)) {
     scenes.push_back(load_scene(file));
   }

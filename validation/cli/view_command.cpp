@@ -1,13 +1,13 @@
 #include <filesystem>
 #include <iostream>
 
-#include "sim/io/input_error.hpp"
-#include "sim/io/json_input.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/recording.hpp"
-#include "validation/replay_data.hpp"
-#include "validation/replay_page.hpp"
-#include "validation/report.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/recording.hpp"
+#include "boxpile/validation/replay_data.hpp"
+#include "boxpile/validation/replay_page.hpp"
+#include "boxpile/validation/report.hpp"
 
 namespace boxpile::cli {
 namespace {

@@ -1,4 +1,4 @@
-#include "validation/cli/json_output.hpp"
+#include "boxpile/validation/json_output.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -18,6 +18,38 @@ nlohmann::json to_json(const Contact& c) {
           {"normal", to_json(c.normal)},
           {"depth", c.depth},
           {"feature", c.feature.value}};
+}
+
+nlohmann::json answer_json(const Manifold& m) {
+  nlohmann::json contacts = nlohmann::json::array();
+  for (const Contact& c : m) contacts.push_back(to_json(c));
+  return {{"contacts", contacts}};
+}
+
+namespace {
+nlohmann::json query_box_json(const QueryBox& b) {
+  return {{"half_extents", to_json(b.half_extents)},
+          {"position", to_json(b.pose.position)},
+          {"orientation", to_json(b.pose.orientation)}};
+}
+}  // namespace
+
+nlohmann::json query_json(const ContactQuery& q) {
+  nlohmann::json doc = nlohmann::json::object();
+  if (!q.name.empty()) doc["name"] = q.name;
+  if (!q.note.empty()) doc["note"] = q.note;
+  doc["a"] = query_box_json(q.a);
+  if (q.b) {
+    doc["b"] = query_box_json(*q.b);
+  } else {
+    doc["b"] = {{"plane", {{"normal", to_json(q.plane->normal)}, {"offset", q.plane->offset}}}};
+  }
+  if (!q.answers.empty()) {
+    nlohmann::json answers = nlohmann::json::object();
+    for (const RecordedAnswer& r : q.answers) answers[r.detector] = answer_json(r.contacts);
+    doc["answers"] = answers;
+  }
+  return doc;
 }
 
 nlohmann::json bodies_json(const std::vector<BodyState>& states) {
