@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace boxpile {
@@ -125,6 +126,12 @@ RigidBody make_body(std::string name, const std::vector<BoxShape>& boxes, double
   body.update_derived();
   body.set_velocity(velocity, angular_velocity);
   return body;
+}
+
+double smallest_edge(const RigidBody& body) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const BoxShape& box : body.shapes) smallest = std::min(smallest, 2.0 * box.half_extents.minCoeff());
+  return smallest;
 }
 
 }  // namespace boxpile

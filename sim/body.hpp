@@ -91,6 +91,9 @@ struct RigidBody {
   Vec3 velocity_at(const Vec3& p) const { return v + omega.cross(p - x); }
 };
 
+// The smallest edge of any of the body's boxes, m (infinity for a body without boxes: the ground).
+double smallest_edge(const RigidBody& body);
+
 // Builds a body from the scene description: computes mass properties, moves the shapes to the
 // centre of mass and sets the derived quantities. A fixed body gets infinite mass.
 RigidBody make_body(std::string name, const std::vector<BoxShape>& boxes, double mass,

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <algorithm>
+
 namespace boxpile {
 namespace {
 
@@ -11,6 +13,23 @@ constexpr double kEventSpeedMin = 0.01;
 constexpr double kEventSpeedGravitySteps = 2.0;
 
 }  // namespace
+
+namespace {
+// The contact margin and the penetration slop scale with the bodies: at most these fractions of
+// the smallest box edge of the pair. An absolute 1 mm margin is as large as a 1 mm box, and an
+// absolute 0.1 mm slop is 1.3% of a 7.8 mm plank, more than a penetration check allows (1%);
+// for unit boxes both fractions exceed the scene's settings, which then apply as before.
+constexpr double kMarginPerEdge = 0.01;
+constexpr double kSlopPerEdge = 1e-3;
+}  // namespace
+
+double contact_margin_for(const SolverSettings& s, double smallest_edge) {
+  return std::min(s.contact_margin, kMarginPerEdge * smallest_edge);
+}
+
+double penetration_slop_for(const SolverSettings& s, double smallest_edge) {
+  return std::min(s.penetration_slop, kSlopPerEdge * smallest_edge);
+}
 
 std::vector<RigidBody> make_bodies(const Scene& scene) {
   std::vector<RigidBody> bodies;

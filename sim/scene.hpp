@@ -58,7 +58,7 @@ struct SolverSettings {
   int contact_passes = 10;        // GBF contact loop passes, restitution ramped -0.9 -> 0 (10-20)
   bool shock_propagation = true;  // GBF shock propagation after the contact loop
   int shock_passes = 10;          // most passes over one level in shock propagation (fewer once converged)
-  PositionIntegrator integrator = PositionIntegrator::ExplicitEuler;
+  PositionIntegrator integrator = PositionIntegrator::SemiImplicitEuler;  // as ODE and Bullet
   // Points this far apart (m) are kept in the step's contact set, so that a resting face whose
   // corners rise by rounding (1e-17 m) does not lose them and tip; the solver lets such a point
   // approach by at most its gap in the step (a speculative contact). Suits boxes of 0.1-1 m.
@@ -70,6 +70,11 @@ struct SolverSettings {
   double penetration_slop = 1e-4;     // m: overlaps this shallow are left alone
   int recovery_passes = 5;
 };
+
+// The contact margin and penetration slop for boxes whose smallest edge is `smallest_edge` (m):
+// the settings' values, or less for small boxes (docs/solver.md, "Lengths relative to the boxes").
+double contact_margin_for(const SolverSettings& settings, double smallest_edge);
+double penetration_slop_for(const SolverSettings& settings, double smallest_edge);
 
 struct TimeSettings {
   double dt = 1.0 / 240.0;  // s
@@ -99,6 +104,52 @@ struct BodyDesc {
   std::optional<Wire> wire;  // constrained to a wire (the bone); unset for ordinary bodies
 };
 
+// What a scene promises to hold in every engine: the checks of the hard-scene catalogue
+// (docs/scene-format.md, "Checks"; measured by validation/stability_checks.hpp). Bodies are
+// named in the file and resolved to scene indices by the loader.
+struct RestCheck {
+  double kinetic_per_body = 1e-6;  // J: each body's kinetic energy at the end stays below this
+  double max_move = 1e-3;          // m: no body's position ever moves farther than this from its start
+};
+struct TurningCheck {
+  double limit = 1e-3;           // rad/s: no body turns faster than this
+  std::optional<double> until;   // s: checked up to this time (the whole run when unset)
+};
+// After its first impact the body's centre rises to `rest_height` + `height` (the analytic
+// e^2 h), within the relative `tolerance`.
+struct ReboundCheck {
+  int body = 0;
+  double rest_height = 0.0;  // m, the centre's height along -gravity when resting
+  double height = 0.0;       // m, expected rise above rest_height
+  double tolerance = 0.05;   // relative
+};
+// The body's centre ends `distance` from its start, within `tolerance` (both m).
+struct SlideCheck {
+  int body = 0;
+  double distance = 0.0;
+  double tolerance = 0.0;
+};
+// The body's centre stays where normal . x >= offset (in front of a wall it must not pass).
+struct SideCheck {
+  int body = 0;
+  Vec3 normal = Vec3::UnitX();  // unit
+  double offset = 0.0;          // m
+};
+struct SceneChecks {
+  // Total energy (kinetic + gravitational) never above its start by more than this fraction of
+  // the start's |E| in any step.
+  double energy_rise = 1e-4;
+  // e = 1 scenes: |E - E0| stays within this fraction of |E0| (unset: not checked).
+  std::optional<double> energy_conserved;
+  std::optional<RestCheck> rest;
+  std::optional<TurningCheck> no_turning;
+  std::optional<ReboundCheck> rebound;
+  std::vector<SlideCheck> slides;
+  std::vector<SideCheck> stays_behind;
+  // The deepest penetration over the run stays below this fraction of the smallest box edge.
+  double penetration = 0.01;
+};
+
 struct Scene {
   std::string name;
   std::string note;    // free text: why the scene exists (fixtures say what they test)
@@ -113,6 +164,7 @@ struct Scene {
   SolverSettings solver;
   TimeSettings time;
   bool allow_initial_overlap = false;
+  SceneChecks checks;
 };
 
 // The simulator's bodies for a scene, in scene order.

@@ -17,10 +17,12 @@ World::World(const Scene& scene, std::string name)
   ground_.material = scene.material;
   ground_.update_derived();
   margins_.resize(bodies_.size());
+  base_margins_.resize(bodies_.size());
   for (const RigidBody& b : bodies_) {
     double r = 0.0;  // the farthest any box corner lies from the centre of mass
     for (const BoxShape& box : b.shapes) r = std::max(r, box.offset.norm() + box.half_extents.norm());
     bounding_radius_.push_back(r);
+    smallest_edge_.push_back(smallest_edge(b));
   }
   const StepStorage storage{bodies_.size()};
   contacts_.reserve(storage.contacts());
@@ -44,20 +46,21 @@ void World::step() {
 
 void World::find_contacts(double dt) {
   contacts_.clear();
-  // Each body's speculative margin: the scene's contact margin plus how far any of its points
-  // can move in one step, (|v| + |omega| r) dt, so that a fast body meets what it would reach
-  // within the step as a speculative contact instead of tunnelling into it.
-  const double base = std::max(scene_.collision.margin, scene_.solver.contact_margin);
+  // Each body's speculative margin: the contact margin (the scene's, or less for small boxes)
+  // plus how far any of its points can move in one step, (|v| + |omega| r) dt, so that a fast body
+  // meets what it would reach within the step as a speculative contact instead of tunnelling
+  // into it. A pair gets the smaller of its two contact margins and both motions.
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const RigidBody& b = bodies_[i];
-    margins_[i] = base + (b.v.norm() + b.omega.norm() * bounding_radius_[i]) * dt;
+    base_margins_[i] = std::max(scene_.collision.margin, contact_margin_for(scene_.solver, smallest_edge_[i]));
+    margins_[i] = base_margins_[i] + (b.v.norm() + b.omega.norm() * bounding_radius_[i]) * dt;
   }
   placed_.place(bodies_);
   CollisionSettings cs = scene_.collision;
   for (const auto& [i, j] : broadphase_.find_pairs(bodies_, margins_)) {
     ++counters_.broadphase_pairs;
     counters_.narrowphase_calls += bodies_[i].shapes.size() * bodies_[j].shapes.size();
-    cs.margin = margins_[i] + margins_[j] - base;
+    cs.margin = margins_[i] + margins_[j] - std::max(base_margins_[i], base_margins_[j]);
     collide_bodies(placed_, i, j, cs, contacts_);
   }
   if (!scene_.ground) return;

@@ -62,6 +62,8 @@ class World final : public Engine {
   std::unique_ptr<ContactMethod> method_;
   std::vector<double> margins_;          // per body, this step's speculative margin, m
   std::vector<double> bounding_radius_;  // per body, m
+  std::vector<double> base_margins_;     // per body, the contact margin for its size, m
+  std::vector<double> smallest_edge_;    // per body, its smallest box edge, m
   std::vector<CollisionEvent> events_;
   WorldCounters counters_;
   StepStats stats_;

@@ -191,7 +191,7 @@ TEST_CASE("a minimal scene gets the documented defaults", "[scene]") {
   CHECK(s.solver.collision_passes == 5);
   CHECK(s.solver.contact_passes == 10);
   CHECK(s.solver.shock_propagation);
-  CHECK(s.solver.integrator == PositionIntegrator::ExplicitEuler);
+  CHECK(s.solver.integrator == PositionIntegrator::SemiImplicitEuler);
   CHECK_FALSE(s.collision.reduce_to_four);
   CHECK(s.collision.margin == 0.0);
   CHECK_FALSE(s.allow_initial_overlap);

@@ -121,6 +121,7 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   const double speed = collision_event_speed(scene, scene.time.dt);
 
   StateMeter meter(scene);
+  RunMonitor monitor(scene);
   WireWatch wires(scene);
   Recorder recorder(scene, run.engine, detail);
   std::vector<RigidBody> posed = make_bodies(scene);
@@ -128,6 +129,7 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
 
   // Every step: energy, penetration and the wires measured, impacts found.
   auto measure_step = [&](const StepView& v) {
+    monitor.observe(v.step, v.states);
     const FrameMetrics m = meter.measure_step(v.states);
     const double e = m.energy.total();
     if (v.step == 0) run.energy_initial = run.energy_max = e;
@@ -177,6 +179,10 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   run.engine_messages = engine->messages();
   if (!full) return run;
 
+  run.measures = monitor.measures();
+  run.checks = monitor.evaluate();
+  // The loop ends a run at its first non-finite state, which the monitor never sees.
+  if (loop.stopped) run.checks = {{"finite", 0.0, 1.0, true, false, ""}};
   if (const auto* recorded = engine->collision_events()) attach_impulses(*recorded, dt, run.events);
   run.wires = wires.reports();
   const std::vector<RigidBody> start = make_bodies(scene);
@@ -461,6 +467,14 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
         if (t && (!p.chaos_time || *t < *p.chaos_time)) p.chaos_time = t;
       }
       p.verdict = verdict(p.difference, p.chaos_time);
+      const SceneCheckResult* unstable_i = first_instability(result.runs[i].checks);
+      const SceneCheckResult* unstable_j = first_instability(result.runs[j].checks);
+      if ((unstable_i == nullptr) != (unstable_j == nullptr)) {
+        const SceneCheckResult& failed = unstable_i ? *unstable_i : *unstable_j;
+        p.verdict = "unstable";
+        p.unstable_engine = unstable_i ? names[i] : names[j];
+        p.instability = describe(failed);
+      }
       result.pairs.push_back(std::move(p));
     }
   }

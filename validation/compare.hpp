@@ -17,6 +17,7 @@
 #include "boxpile/sim/scene.hpp"
 #include "boxpile/validation/contact_diff.hpp"
 #include "boxpile/validation/recording.hpp"
+#include "boxpile/validation/stability_checks.hpp"
 #include "boxpile/validation/stacks.hpp"
 
 namespace boxpile {
@@ -93,6 +94,9 @@ struct EngineRun {
   std::vector<WireReport> wires;
   bool finite = true;  // every state finite to the end (the run stops at the first that is not)
   std::uint64_t engine_messages = 0;  // ODE's messages during the run
+  // The scene's checks (validation/stability_checks.hpp), measured at every step.
+  RunMeasures measures;
+  std::vector<SceneCheckResult> checks;
 };
 
 // One body's difference between two runs of the same scene over the recorded frames.
@@ -130,9 +134,13 @@ struct PairComparison {
   // The earlier of the two engines' own times to pass the position threshold (empty when
   // neither diverges from itself that far).
   std::optional<double> chaos_time;
-  // "agree": never past the threshold; "chaos": past it no earlier than half the chaos time;
-  // "differ": past it before chaos explains it.
+  // "unstable": one engine of the two shows instability (first_instability: a NaN, a rise of
+  // energy, resting bodies that keep moving) and the other does not, whatever the differences;
+  // else "agree": never past the threshold; "chaos": past it no earlier than half the chaos
+  // time; "differ": past it before chaos explains it.
   std::string verdict;
+  std::string unstable_engine;  // the engine that is unstable (verdict "unstable")
+  std::string instability;      // its failed check, e.g. "energy_rise 0.11 > 0.0001"
 };
 
 // One detector's contact set of a pair: its point count and how it differs from ours.

@@ -172,4 +172,25 @@ bool gnuplot_available() {
   return false;
 }
 
+std::vector<std::string> write_plots(const std::filesystem::path& dir, const std::vector<PlotSpec>& plots,
+                                     std::vector<std::string>& notes) {
+  std::vector<std::string> rendered;
+  const bool gnuplot = gnuplot_available();
+  if (!gnuplot && !plots.empty()) {
+    notes.push_back("gnuplot not found (scripts/install-deps installs gnuplot-nox): plots not rendered; "
+                    "their data and scripts are written");
+  }
+  for (const PlotSpec& spec : plots) {
+    write_plot_files(dir, spec);
+    if (!gnuplot) continue;
+    try {
+      render_plot(dir, spec.name);
+      rendered.push_back(spec.name);
+    } catch (const PlotError& e) {
+      notes.push_back(e.what());
+    }
+  }
+  return rendered;
+}
+
 }  // namespace boxpile

@@ -46,4 +46,9 @@ void render_plot(const std::filesystem::path& dir, const std::string& name);
 // Whether a gnuplot executable is on the PATH.
 bool gnuplot_available();
 
+// Writes every plot's files into `dir` and renders them when gnuplot is available. Returns the
+// names rendered; what went wrong (no gnuplot, a plot gnuplot refused) is added to `notes`.
+std::vector<std::string> write_plots(const std::filesystem::path& dir, const std::vector<PlotSpec>& plots,
+                                     std::vector<std::string>& notes);
+
 }  // namespace boxpile

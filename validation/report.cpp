@@ -130,6 +130,8 @@ json pair_json(const CompareResult& r, const PairComparison& p) {
           {"orientation_passes", optional_number(d.orientation_passes)},
           {"chaos_time", optional_number(p.chaos_time)},
           {"verdict", p.verdict},
+          {"unstable_engine", p.unstable_engine.empty() ? json(nullptr) : json(p.unstable_engine)},
+          {"instability", p.instability.empty() ? json(nullptr) : json(p.instability)},
           {"t", d.t},
           {"max_position", d.max_position},
           {"bodies", bodies}};
@@ -280,10 +282,13 @@ std::string pair_line(const PairComparison& p, double threshold) {
   s += p.chaos_time ? "; engines diverge from themselves by " + seconds(*p.chaos_time)
                     : std::string("; neither diverges from itself that far");
   s += "; verdict: " + p.verdict;
+  if (p.verdict == "unstable") s += " (" + p.unstable_engine + ": " + p.instability + ")";
   return s;
 }
 
-std::string verdict_text(const std::string& verdict) {
+std::string verdict_text(const PairComparison& p) {
+  const std::string& verdict = p.verdict;
+  if (verdict == "unstable") return p.unstable_engine + " is unstable (" + p.instability + "), the other is not";
   if (verdict == "agree") return "agree within the threshold";
   if (verdict == "chaos") return "differ no sooner than chaos explains";
   return "differ before chaos explains it";
@@ -437,7 +442,7 @@ void write_md_pairs(std::ostream& md, const CompareResult& r) {
        << d.largest_position_body
        << ") | " << fmt(d.largest_orientation, "%.3g") << " rad (" << d.largest_orientation_body << ") | "
        << optional_seconds(d.position_passes) << " | " << optional_seconds(p.chaos_time) << " | "
-       << verdict_text(p.verdict) << " |\n";
+       << verdict_text(p) << " |\n";
   }
   md << "\nA pair *differs* when its position difference passes the threshold earlier than half the time "
         "either engine takes to pass it against its own perturbed run; later than that, chaos "
@@ -560,20 +565,7 @@ void write_report(const CompareResult& r, const fs::path& dir, std::vector<std::
     if (!os.flush()) throw std::runtime_error((dir / "report.json").string() + ": write failed");
   }
   write_replay(r, report, dir, notes);
-  std::vector<std::string> rendered;
-  const bool gnuplot = gnuplot_available();
-  if (!gnuplot) notes.push_back("gnuplot not found (scripts/install-deps installs gnuplot-nox): plots not rendered; "
-                                "their data and scripts are written");
-  for (const PlotSpec& spec : report_plots(r)) {
-    write_plot_files(dir, spec);
-    if (!gnuplot) continue;
-    try {
-      render_plot(dir, spec.name);
-      rendered.push_back(spec.name);
-    } catch (const PlotError& e) {
-      notes.push_back(e.what());
-    }
-  }
+  const std::vector<std::string> rendered = write_plots(dir, report_plots(r), notes);
   std::ofstream os(dir / "report.md");
   os << report_markdown(r, rendered, notes);
   if (!os.flush()) throw std::runtime_error((dir / "report.md").string() + ": write failed");

@@ -310,6 +310,87 @@ std::vector<BodyDesc> read_bodies(const JsonNode& node, const Material& scene_ma
   return bodies;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Checks
+
+// A body named by a check: its index in the scene.
+int read_body_name(const JsonNode& node, const std::vector<BodyDesc>& bodies) {
+  const std::string name = node.string();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].name == name) return static_cast<int>(i);
+  }
+  node.fail("no body named " + in_quotes(name) + " in the scene");
+}
+
+RestCheck read_rest_check(const JsonNode& node) {
+  node.expect_object({"kinetic_per_body", "max_move"});
+  RestCheck c;
+  if (const auto k = node.find("kinetic_per_body")) c.kinetic_per_body = json_input::read_positive(*k);
+  if (const auto m = node.find("max_move")) c.max_move = json_input::read_positive(*m);
+  return c;
+}
+
+TurningCheck read_turning_check(const JsonNode& node) {
+  node.expect_object({"limit", "until"});
+  TurningCheck c;
+  if (const auto l = node.find("limit")) c.limit = json_input::read_positive(*l);
+  if (const auto u = node.find("until")) c.until = json_input::read_non_negative(*u);
+  return c;
+}
+
+ReboundCheck read_rebound_check(const JsonNode& node, const std::vector<BodyDesc>& bodies) {
+  node.expect_object({"body", "rest_height", "height", "tolerance"});
+  ReboundCheck c;
+  c.body = read_body_name(node.at("body"), bodies);
+  c.rest_height = node.at("rest_height").number();
+  c.height = json_input::read_positive(node.at("height"));
+  if (const auto t = node.find("tolerance")) c.tolerance = json_input::read_positive(*t);
+  return c;
+}
+
+std::vector<SlideCheck> read_slide_checks(const JsonNode& node, const std::vector<BodyDesc>& bodies) {
+  std::vector<SlideCheck> checks;
+  for (std::size_t i = 0; i < node.array_size(); ++i) {
+    const JsonNode item = node.element(i);
+    item.expect_object({"body", "distance", "tolerance"});
+    checks.push_back({read_body_name(item.at("body"), bodies), json_input::read_non_negative(item.at("distance")),
+                      json_input::read_positive(item.at("tolerance"))});
+  }
+  return checks;
+}
+
+std::vector<SideCheck> read_side_checks(const JsonNode& node, const std::vector<BodyDesc>& bodies) {
+  std::vector<SideCheck> checks;
+  for (std::size_t i = 0; i < node.array_size(); ++i) {
+    const JsonNode item = node.element(i);
+    item.expect_object({"body", "normal", "offset"});
+    SideCheck c;
+    c.body = read_body_name(item.at("body"), bodies);
+    const JsonNode normal = item.at("normal");
+    c.normal = json_input::read_vec3(normal);
+    if (!(c.normal.norm() > 0.0)) normal.fail("must not be zero");
+    c.normal.normalize();
+    c.offset = item.at("offset").number();
+    checks.push_back(c);
+  }
+  return checks;
+}
+
+SceneChecks read_checks(const JsonNode& node, const std::vector<BodyDesc>& bodies) {
+  node.expect_object({"energy_rise", "energy_conserved", "rest", "no_turning", "rebound", "slides",
+                      "stays_behind", "penetration"});
+  SceneChecks c;
+  if (const auto e = node.find("energy_rise")) c.energy_rise = json_input::read_positive(*e);
+  if (const auto e = node.find("energy_conserved")) c.energy_conserved = json_input::read_positive(*e);
+  if (const auto r = node.find("rest")) c.rest = read_rest_check(*r);
+  if (const auto t = node.find("no_turning")) c.no_turning = read_turning_check(*t);
+  if (const auto r = node.find("rebound")) c.rebound = read_rebound_check(*r, bodies);
+  if (const auto s = node.find("slides")) c.slides = read_slide_checks(*s, bodies);
+  if (const auto s = node.find("stays_behind")) c.stays_behind = read_side_checks(*s, bodies);
+  if (const auto p = node.find("penetration")) c.penetration = json_input::read_positive(*p);
+  return c;
+}
+
 // Static friction is read by the penalty method's friction springs alone.
 void refuse_static_friction(const JsonNode& root) {
   auto refuse = [](const std::optional<JsonNode>& material) {
@@ -346,7 +427,7 @@ void check_penalty_settings(const JsonNode& root, const Scene& s) {
 
 Scene read_scene(const JsonNode& root) {
   root.expect_object({"name", "note", "gravity", "ground", "material", "effects", "damping",
-                      "bodies", "solver", "collision", "time", "allow_initial_overlap"});
+                      "bodies", "solver", "collision", "time", "allow_initial_overlap", "checks"});
   Scene s;
   s.name = read_nonempty_string(root.at("name"));
   s.note = root.string_or("note", "");
@@ -362,6 +443,7 @@ Scene read_scene(const JsonNode& root) {
   s.allow_initial_overlap = root.boolean_or("allow_initial_overlap", false);
   if (s.solver.method == ContactSolver::Impulse) refuse_static_friction(root);
   if (s.solver.method == ContactSolver::Penalty) check_penalty_settings(root, s);
+  if (const auto c = root.find("checks")) s.checks = read_checks(*c, s.bodies);
   return s;
 }
 

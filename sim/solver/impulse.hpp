@@ -30,6 +30,7 @@ struct SolverContact {
   Vec3 ra = Vec3::Zero();
   Vec3 rb = Vec3::Zero();
   double depth = 0.0;
+  double slop = 0.0;         // m, penetration left alone by recovery (relative to the pair's boxes)
   double friction = 0.0;     // mu
   double restitution = 0.0;  // e
   Mat3 Ka = Mat3::Zero();    // 1/mA E - [rA]x IA^-1 [rA]x (zero for a fixed body)
@@ -39,6 +40,7 @@ struct SolverContact {
   Mat3 K = Mat3::Zero();
   Mat3 Kinv = Mat3::Zero();
   bool active = true;        // the collision loop drops contacts that separate
+  double collision_impulse = 0.0;  // N s, the normal impulse the collision loop gave this step
   // The normal velocity when the current loop began (the collision loop's events and the
   // contact loop's restitution ramp read it), and, in the resting phase (contact loop and
   // shock propagation), the impulse accumulated over the phase so far.

@@ -15,7 +15,6 @@ void PenetrationRecovery::run(const ImpulseStep& step) {
   const std::vector<SolverContact>& contacts = step.contacts;
   const SolverSettings& settings = step.world.scene.solver;
   const double beta = settings.penetration_recovery;
-  const double slop = settings.penetration_slop;
   const double dt = step.world.dt;
   const int passes = settings.recovery_passes;
   const std::size_t n = sb.bodies.size();
@@ -36,9 +35,9 @@ void PenetrationRecovery::run(const ImpulseStep& step) {
   for (int pass = 0; pass < passes; ++pass) {
     for (std::size_t k = 0; k < contacts.size(); ++k) {
       const SolverContact& c = contacts[k];
-      if (c.depth <= slop) continue;
+      if (c.depth <= c.slop) continue;
       // Normal-only: lambda += (target - u_n) / (n . (Ka + Kb) n), kept >= 0 (pushes only).
-      const double target = beta * (c.depth - slop) / dt;
+      const double target = beta * (c.depth - c.slop) / dt;
       const double un = c.n.dot(point_velocity(c.a, c.ra) - point_velocity(c.b, c.rb));
       const double lambda = std::max(0.0, lambda_[k] + (target - un) / c.n.dot((c.Ka + c.Kb) * c.n));
       const Vec3 impulse = (lambda - lambda_[k]) * c.n;

@@ -101,6 +101,23 @@ void ShockPropagation::run(ImpulseStep& step) {
   // Solve level by level with e = 0; bodies below the level are frozen (infinite mass), so
   // nothing pushes back down the pile and the stack's weight is carried by the ground.
   auto moves = [&](int body, int l) { return body >= 0 && level_of(body) == l; };
+  // A frozen body is immovable, not at rest: if it still moves toward the level's body, asking
+  // for u_n >= 0 would launch that body at the frozen one's speed, with energy nothing paid for
+  // (a ram at 15 m/s carried the bricks it touched along at 15 m/s). The level's body is only
+  // stopped: its own normal velocity must not fall below min(0, the frozen point's), so the
+  // target for the relative u_n is min(0, -w) with w the frozen point's velocity along the
+  // direction from it to the moving body.
+  auto frozen_target = [&](const SolverBodies& bodies, const SolverContact& c, int l) {
+    if (moves(c.a, l) && !moves(c.b, l)) {
+      const RigidBody& b = bodies.get(c.b);
+      return std::min(0.0, -c.n.dot(b.v + b.omega.cross(c.rb)));
+    }
+    if (moves(c.b, l) && !moves(c.a, l)) {
+      const RigidBody& a = bodies.get(c.a);
+      return std::min(0.0, c.n.dot(a.v + a.omega.cross(c.ra)));
+    }
+    return 0.0;
+  };
   for (int l = 0; l <= top; ++l) {
     for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
       SolverContact& c = contacts[by_level_[k]];
@@ -112,7 +129,8 @@ void ShockPropagation::run(ImpulseStep& step) {
       double largest_change = 0.0;
       for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
         SolverContact& c = contacts[by_level_[k]];
-        const Vec3 j = resting_impulse(c, sb.relative_velocity(c), allow_gap(c, 0.0, dt), friction, counters);
+        const Vec3 j = resting_impulse(c, sb.relative_velocity(c), allow_gap(c, frozen_target(sb, c, l), dt), friction,
+                                       counters);
         sb.apply(c, j, moves(c.a, l), moves(c.b, l));
         largest_change = std::max(largest_change, (c.K * j).norm());
       }

@@ -107,5 +107,14 @@ int run_sweep_command(const SweepOptions& options);
 int run_sweep_merge_command(const SweepOptions& options);
 // `boxpile settings`: every engine's sweepable settings as Markdown tables.
 int run_settings_command();
+// `boxpile stability [--engines LIST] [--scenes FILE|DIR ...] [--report DIR]`: the catalogue of
+// hard scenes in each engine, every run judged by its scene's checks; a report directory.
+struct StabilityOptions {
+  std::vector<std::string> engines;  // empty: own, ode, bullet
+  std::vector<std::string> scenes;   // empty: the catalogue (fixtures/hard/)
+  std::string report = "boxpile-stability";
+};
+void add_stability_command(CLI::App& app, StabilityOptions& options);
+int run_stability_command(const StabilityOptions& options);
 
 }  // namespace boxpile::cli

@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
   add_compare_command(app, compare);
   SweepOptions sweep;
   add_sweep_command(app, sweep);
+  StabilityOptions stability;
+  add_stability_command(app, stability);
   ConformOptions conform;
   add_conform_command(app, conform);
   ViewOptions view;
@@ -59,6 +61,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("sweep")) return run_sweep_command(sweep);
     if (app.got_subcommand("sweep-merge")) return run_sweep_merge_command(sweep);
     if (app.got_subcommand("settings")) return run_settings_command();
+    if (app.got_subcommand("stability")) return run_stability_command(stability);
     if (app.got_subcommand("conform")) return run_conform_command(conform);
     if (app.got_subcommand("view")) return run_view(view);
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "

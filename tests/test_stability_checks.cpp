@@ -1,0 +1,119 @@
+// The shared checks (validation/stability_checks.hpp) on runs whose answer is known: a body at
+// rest passes everything; energy that rises, a body that moves, a spin, a bounce of known height
+// and a wall passed through are each caught, with the measured figure.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/stability_checks.hpp"
+
+using namespace boxpile;
+
+namespace {
+
+Scene one_box(const std::string& checks) {
+  return parse_scene(R"({"name": "t", "time": {"dt": 0.01, "duration": 1},
+    "ground": {}, "bodies": [{"name": "box", "mass": 2, "half_extents": [0.5, 0.5, 0.5], "position": [0, 0, 0.5]}],
+    "checks": )" + checks + "}", "t.json");
+}
+
+BodyState state(const Vec3& p, const Vec3& v = Vec3::Zero(), const Vec3& w = Vec3::Zero()) {
+  return {"box", p, Quat::Identity(), v, w};
+}
+
+const SceneCheckResult& find(const std::vector<SceneCheckResult>& results, const std::string& name) {
+  for (const SceneCheckResult& r : results)
+    if (r.name == name) return r;
+  FAIL("no check " << name);
+  return results.front();
+}
+
+}  // namespace
+
+TEST_CASE("a body at rest passes every check", "[checks]") {
+  const Scene s = one_box(R"({"energy_rise": 1e-6, "rest": {"kinetic_per_body": 1e-6, "max_move": 1e-3},
+                              "no_turning": {"limit": 1e-3}})");
+  RunMonitor m(s);
+  for (long k = 0; k <= 100; ++k) m.observe(k, {state({0, 0, 0.5})});
+  const std::vector<SceneCheckResult> r = m.evaluate();
+  CHECK(all_passed(r));
+  CHECK(r.size() == 6);  // finite, energy, penetration, rest kinetic and move, turning
+  CHECK(m.measures().energy_start == Approx(2 * 9.81 * 0.5));
+  CHECK_FALSE(m.measures().moved_at_step);
+}
+
+TEST_CASE("energy that rises, a body that keeps moving and a spin are caught", "[checks]") {
+  const Scene s = one_box(R"({"energy_rise": 1e-6, "rest": {"kinetic_per_body": 1e-6, "max_move": 1e-3},
+                              "no_turning": {"limit": 1e-3, "until": 0.5}})");
+  RunMonitor m(s);
+  m.observe(0, {state({0, 0, 0.5})});
+  // Lifted by 1 cm and moving at 0.1 m/s at step 10, spinning at 2 rad/s after 0.5 s only.
+  m.observe(10, {state({0, 0, 0.51}, {0.1, 0, 0})});
+  m.observe(60, {state({0.002, 0, 0.5}, Vec3::Zero(), {0, 0, 2})});
+  const std::vector<SceneCheckResult> r = m.evaluate();
+  CHECK_FALSE(all_passed(r));
+  // The largest rise is the spin's: 1/2 I w^2 with I = m (a^2 + b^2) / 12 = 1/3 kg m^2 is 2/3 J
+  // (the lift at step 10 added only 0.2062 J).
+  const double spin_energy = 0.5 * (1.0 / 3.0) * 4.0;
+  CHECK(find(r, "energy_rise").value == Approx(spin_energy / (2 * 9.81 * 0.5)));
+  CHECK_FALSE(find(r, "energy_rise").passed);
+  CHECK(find(r, "rest_move").value == Approx(0.01));
+  CHECK(m.measures().moved_at_step == 10);
+  // Kinetic energy at the end: the rotation's only.
+  CHECK(find(r, "rest_kinetic").value == Approx(spin_energy));
+  // The spin came after `until`: not counted.
+  CHECK(find(r, "no_turning").passed);
+  CHECK(first_instability(r)->name == "energy_rise");
+  CHECK(describe(find(r, "rest_move")) == "rest_move 0.01 m > 0.001");
+}
+
+TEST_CASE("a bounce is measured from the first impact to the top of the rebound", "[checks]") {
+  const Scene s = one_box(R"({"rebound": {"body": "box", "rest_height": 0.5, "height": 0.25, "tolerance": 0.05}})");
+  RunMonitor m(s);
+  m.observe(0, {state({0, 0, 1.5})});
+  m.observe(1, {state({0, 0, 0.6}, {0, 0, -4})});
+  m.observe(2, {state({0, 0, 0.52}, {0, 0, 2})});   // bounced
+  m.observe(3, {state({0, 0, 0.74}, {0, 0, 0.1})});
+  m.observe(4, {state({0, 0, 0.7}, {0, 0, -1})});   // falling again: the rebound is over
+  m.observe(5, {state({0, 0, 0.9}, {0, 0, 1})});    // a later bounce does not count
+  REQUIRE(m.measures().rebound);
+  CHECK(*m.measures().rebound == Approx(0.24));
+  CHECK(find(m.evaluate(), "rebound").value == Approx(0.04));
+  CHECK(find(m.evaluate(), "rebound").passed);
+}
+
+TEST_CASE("a body that passes a wall and a NaN are caught", "[checks]") {
+  const Scene s = one_box(R"({"stays_behind": [{"body": "box", "normal": [-2, 0, 0], "offset": 0.01}]})");
+  RunMonitor m(s);
+  m.observe(0, {state({-1, 0, 0.5})});
+  m.observe(1, {state({0.3, 0, 0.5})});
+  const SceneCheckResult& wall = find(m.evaluate(), "stays_behind box");
+  CHECK(wall.value == Approx(-0.31));
+  CHECK_FALSE(wall.passed);
+  m.observe(2, {state({std::nan(""), 0, 0.5})});
+  const std::vector<SceneCheckResult> r = m.evaluate();
+  REQUIRE(r.size() == 1);
+  CHECK(r[0].name == "finite");
+  CHECK_FALSE(r[0].passed);
+}
+
+TEST_CASE("scene checks: unknown keys and unknown bodies are errors naming the path", "[checks]") {
+  auto error_of = [](const std::string& checks) {
+    try {
+      one_box(checks);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(error_of(R"({"energy_rse": 1e-6})") ==
+        "t.json: checks: unknown key \"energy_rse\"; did you mean \"energy_rise\"?");
+  CHECK(error_of(R"({"rebound": {"body": "bx", "rest_height": 0.5, "height": 0.25}})") ==
+        "t.json: checks.rebound.body: no body named \"bx\" in the scene");
+  CHECK(error_of(R"({"rest": {"max_move": -1}})").find("checks.rest.max_move: must be > 0") != std::string::npos);
+  CHECK(error_of(R"({"stays_behind": [{"body": "box", "normal": [0, 0, 0], "offset": 0}]})") ==
+        "t.json: checks.stays_behind[0].normal: must not be zero");
+}

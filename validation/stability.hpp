@@ -1,0 +1,69 @@
+// `boxpile stability`: every scene of a catalogue (default fixtures/hard/) run in every engine,
+// each run judged by the scene's checks (validation/stability_checks.hpp). The report
+// (stability.json, stability.md, plots of the failing cells) is in validation/stability_report.hpp;
+// docs/stability.md describes both.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "boxpile/reference/settings.hpp"
+#include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/stability_checks.hpp"
+
+namespace boxpile {
+
+// Where the catalogue run is, for a progress display with the time left.
+struct StabilityProgress {
+  std::string_view scene;
+  std::string_view engine;
+  int index = 0;  // cell, 0-based
+  int total = 0;
+  double fraction = 0.0;         // of this cell's steps
+  double elapsed = 0.0;          // s since the catalogue started
+  double remaining = 0.0;        // s, estimated (0 until the first cell has run a while)
+};
+
+struct StabilitySettings {
+  std::vector<std::string> engines = {"own", "ode", "bullet"};
+  ReferenceSettings reference;
+  double frame_rate = 30.0;  // 1/s: energy and kinetic energy recorded for the plots
+  std::function<void(const StabilityProgress&)> progress;
+};
+
+// One scene in one engine.
+struct StabilityCell {
+  std::string scene;
+  std::string engine;
+  bool passed = false;
+  std::vector<SceneCheckResult> checks;
+  RunMeasures measures;
+  long steps = 0;  // steps run (fewer than the scene's when a state became NaN)
+  double us_per_step = 0.0;
+  double wall_seconds = 0.0;  // stepping only
+  std::vector<double> t, energy, kinetic;  // recorded frames, s and J
+};
+
+struct StabilityResult {
+  std::vector<std::string> engines;
+  std::vector<Scene> scenes;
+  std::vector<StabilityCell> cells;  // scene by scene, engines in order within each
+  double wall_seconds = 0.0;         // the whole run
+  // Whether every cell of our engine ("own") passed.
+  bool own_passed() const;
+};
+
+// Runs one scene in one engine; `progress` gets the fraction of the steps done.
+StabilityCell run_stability_cell(const Scene& scene, std::string_view engine, const StabilitySettings& settings,
+                                 const std::function<void(double)>& progress = {});
+
+// Runs every scene in every engine (UnknownEngine for a name not available, before any run).
+StabilityResult run_stability(const std::vector<Scene>& scenes, const StabilitySettings& settings);
+
+// The scene files named by `paths`: a file as it is, a directory's *.json files sorted by name.
+// Throws InputError for a path that does not exist or a directory without scenes.
+std::vector<std::string> catalogue_files(const std::vector<std::string>& paths);
+
+}  // namespace boxpile
