@@ -13,6 +13,8 @@
 #include "sim/collision/box_box.hpp"
 #include "sim/collision/box_plane.hpp"
 #include "sim/collision/broadphase.hpp"
+#include "sim/finite.hpp"
+#include "sim/time_steps.hpp"
 #include "sim/world.hpp"
 #include "validation/engine_factory.hpp"
 #include "validation/state_meter.hpp"
@@ -40,19 +42,12 @@ constexpr double kNegligibleDisagreement = kHullTolerance;
 // engines take to diverge from themselves.
 constexpr double kChaosFraction = 0.5;
 
-long step_count(const Scene& scene) { return std::lround(scene.time.duration / scene.time.dt); }
-
 long steps_per_frame(const Scene& scene, double frame_rate) {
   return std::max(1L, std::lround(1.0 / (frame_rate * scene.time.dt)));
 }
 
 double event_speed(const Scene& scene) {
   return std::max(kEventSpeedMin, kEventSpeedGravitySteps * scene.gravity.norm() * scene.time.dt);
-}
-
-bool finite(const BodyState& s) {
-  return s.position.allFinite() && s.orientation.coeffs().allFinite() && s.velocity.allFinite() &&
-         s.angular_velocity.allFinite();
 }
 
 // Impacts in one step of a reference engine: each contact point of the step's set approaching
@@ -135,7 +130,7 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   const auto* ode = dynamic_cast<const OdeEngine*>(engine.get());
   const bool full = detail == RunDetail::Full;
   const double dt = scene.time.dt;
-  const long steps = step_count(scene);
+  const long steps = step_count(scene.time);
   const long every = steps_per_frame(scene, settings.frame_rate);
   const double speed = event_speed(scene);
 
@@ -190,6 +185,16 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
     stepping += Clock::now() - start;
     const double t = static_cast<double>(k) * dt;
     engine->body_states(states);
+    if (const auto bad = find_non_finite(states)) {
+      // The run stops here: nothing after a non-finite state means anything.
+      // The report keeps the last finite states (those of step k - 1).
+      run.failure = describe_non_finite(k, t, states, *bad);
+      run.steps = k - 1;
+      std::swap(before, states);
+      const double t_last = static_cast<double>(k - 1) * dt;
+      if (run.frames.t.back() < t_last) record(t_last);
+      break;
+    }
     if (full) {
       engine->contacts(contacts);
       set_body_states(posed, before);
@@ -202,12 +207,12 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
     }
   }
 
-  run.steps = steps;
+  if (!run.failure) run.steps = steps;
   run.wall_seconds = std::chrono::duration<double>(stepping).count();
-  run.us_per_step = steps > 0 ? 1e6 * run.wall_seconds / static_cast<double>(steps) : 0.0;
+  run.us_per_step = run.steps > 0 ? 1e6 * run.wall_seconds / static_cast<double>(run.steps) : 0.0;
   run.final_states = states;
-  run.final_t = static_cast<double>(steps) * dt;
-  run.finite = std::all_of(states.begin(), states.end(), [](const BodyState& s) { return finite(s); });
+  run.final_t = static_cast<double>(run.steps) * dt;
+  run.finite = !run.failure;
   run.engine_messages = ode ? ode->messages() : 0;
   if (!full) return run;
 
@@ -430,7 +435,7 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
   CompareResult result;
   result.scene = scene;
   result.settings = settings;
-  result.steps = step_count(scene);
+  result.steps = step_count(scene.time);
   std::vector<std::string> names;
   for (const std::string& name : settings.engines) {
     check_engine_name(name);  // all of them before the first run
@@ -450,6 +455,9 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
     };
     result.runs.push_back(run_one(scene, names[e], settings, RunDetail::Full, progress_of(false)));
     const EngineRun again = run_one(perturbed, names[e], settings, RunDetail::StatesOnly, progress_of(true));
+    if (again.failure && !result.runs.back().failure) {
+      result.runs.back().failure = "from the perturbed start, " + *again.failure;
+    }
     Baseline b;
     b.engine = names[e];
     b.divergence = diff_runs(names[e], result.runs.back().frames, names[e] + " perturbed", again.frames,

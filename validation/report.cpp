@@ -78,6 +78,7 @@ json engine_json(const CompareResult& r, const EngineRun& run, const Baseline& b
           {"events", events},
           {"wires", wires},
           {"finite", run.finite},
+          {"failure", run.failure ? nlohmann::json(*run.failure) : nlohmann::json(nullptr)},
           {"engine_messages", run.engine_messages},
           {"baseline",
            {{"perturbation", r.settings.perturbation},
@@ -373,7 +374,7 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
      << fmt(r.settings.orientation_threshold) << " rad; bodies within " << fmt(r.settings.touch_tolerance)
      << " m touch\n\n";
   for (const EngineRun& run : r.runs) {
-    if (!run.finite) md << "**" << run.engine << " blew up: some states are not finite at the end.**\n\n";
+    if (run.failure) md << "**" << run.engine << " failed: " << *run.failure << "; its run stops there.**\n\n";
     if (run.engine_messages > 0) md << run.engine << " printed " << run.engine_messages << " solver message(s).\n\n";
   }
 

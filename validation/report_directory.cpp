@@ -23,12 +23,14 @@ constexpr const char* kMarker = "report.json";
   throw ReportDirectoryError("report directory " + target.string() + ": " + why);
 }
 
-void check_target(const fs::path& target) {
+void check_target(const fs::path& target, const std::vector<fs::path>& inputs) {
+  try {
+    check_output_path(target, OutputKind::Directory, inputs);
+  } catch (const OutputError& e) {
+    throw ReportDirectoryError(e.what());
+  }
   std::error_code ec;
-  const fs::file_status st = fs::symlink_status(target, ec);
-  if (ec && ec != std::errc::no_such_file_or_directory) refuse(target, ec.message());
-  if (!fs::exists(st)) return;
-  if (!fs::is_directory(st)) refuse(target, "exists and is not a directory");
+  if (!fs::exists(fs::symlink_status(target, ec))) return;
   const bool empty = fs::is_empty(target, ec);
   if (ec) refuse(target, ec.message());
   if (!empty && !fs::exists(target / kMarker)) {
@@ -39,15 +41,18 @@ void check_target(const fs::path& target) {
 
 }  // namespace
 
-ReportDirectory::ReportDirectory(fs::path target) : target_(std::move(target)) {
+ReportDirectory::ReportDirectory(fs::path target, const std::vector<fs::path>& inputs)
+    : target_(std::move(target)) {
   if (target_.empty()) refuse(target_, "no directory given");
   // "out/" names the directory "out": drop the trailing separator, so that its parent is found.
   if (!target_.has_filename()) target_ = target_.parent_path();
-  check_target(target_);
-  const fs::path parent = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
-  std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec) refuse(target_, "cannot create " + parent.string() + ": " + ec.message());
+  check_target(target_, inputs);
+  fs::path parent;
+  try {
+    parent = prepare_parent(target_);
+  } catch (const OutputError& e) {
+    throw ReportDirectoryError(e.what());
+  }
   // A hidden sibling, so that the final rename stays on one file system.
   std::string name(1, '.');
   name += target_.filename().string();
@@ -59,6 +64,7 @@ ReportDirectory::ReportDirectory(fs::path target) : target_(std::move(target)) {
     refuse(target_, std::string("cannot write in ") + parent.string() + ": " + std::strerror(errno));
   }
   staging_ = fs::path(buf.data());
+  registration_ = std::make_unique<StagedPath>(staging_);
   // mkdtemp makes it private (0700); the report gets the permissions of any new directory.
   const mode_t mask = umask(0);
   umask(mask);
@@ -72,7 +78,7 @@ ReportDirectory::~ReportDirectory() {
 }
 
 void ReportDirectory::commit() {
-  check_target(target_);  // it may have changed during the run
+  check_target(target_, {});  // it may have changed during the run
   std::error_code ec;
   if (!fs::exists(target_, ec)) {
     fs::rename(staging_, target_, ec);

@@ -1,27 +1,33 @@
 // A report directory that is either complete or absent: files are written into a staging
 // directory beside it, which replaces the report directory in one rename at the end. A failure
-// before that (or an exception) removes the staging directory and leaves any previous report as
-// it was.
+// before that (or an exception, an interruption, an abort) removes the staging directory and
+// leaves any previous report as it was. The checks and the clean-up are those of every output
+// (validation/output_safety.hpp).
 #pragma once
 
 #include <filesystem>
-#include <stdexcept>
+#include <memory>
+#include <vector>
+
+#include "validation/output_safety.hpp"
 
 namespace boxpile {
 
-// The report directory cannot be used: it cannot be created or written, or it is a file, or a
-// directory that holds something other than a boxpile report. Bad input: the CLI exits with 2.
-class ReportDirectoryError : public std::runtime_error {
+// The report directory cannot be used: it cannot be created or written, or it is not a
+// directory, or a directory that holds something other than a boxpile report. Bad input: the CLI
+// exits with 2.
+class ReportDirectoryError : public OutputError {
  public:
-  using std::runtime_error::runtime_error;
+  using OutputError::OutputError;
 };
 
 class ReportDirectory {
  public:
-  // Checks `target` and creates the staging directory (and any missing parents of `target`).
-  // An existing `target` is accepted only if it is empty or holds a report.json (it will be
+  // Checks `target` (check_output_path: no links, devices, FIFOs, sockets, nothing that holds one
+  // of `inputs`) and creates the staging directory (and any missing parents of `target`). An
+  // existing `target` is accepted only if it is empty or holds a report.json (it will be
   // replaced); anything else is refused rather than deleted.
-  explicit ReportDirectory(std::filesystem::path target);
+  explicit ReportDirectory(std::filesystem::path target, const std::vector<std::filesystem::path>& inputs = {});
   ~ReportDirectory();
   ReportDirectory(const ReportDirectory&) = delete;
   ReportDirectory& operator=(const ReportDirectory&) = delete;
@@ -37,6 +43,7 @@ class ReportDirectory {
  private:
   std::filesystem::path target_;
   std::filesystem::path staging_;
+  std::unique_ptr<StagedPath> registration_;
   bool committed_ = false;
 };
 

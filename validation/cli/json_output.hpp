@@ -8,6 +8,7 @@
 #include "sim/collision/contact.hpp"
 #include "sim/engine.hpp"
 #include "sim/math.hpp"
+#include "validation/output_safety.hpp"
 
 namespace boxpile {
 
@@ -18,8 +19,8 @@ nlohmann::json to_json(const Contact& c);
 // angular_velocity.
 nlohmann::json bodies_json(const std::vector<BodyState>& states);
 
-// Writes `doc` to `path` atomically: a temporary file beside it, then a rename, so a failure
-// never leaves a half-written file. Throws std::runtime_error naming the path.
-void write_json_file(const nlohmann::json& doc, const std::string& path);
+// Writes `doc` into an output checked and staged before the run (validation/output_safety.hpp):
+// whole or not at all. Throws OutputError naming the path.
+void write_json_file(const nlohmann::json& doc, OutputFile& out);
 
 }  // namespace boxpile

@@ -1,10 +1,11 @@
 // boxpile: run box-pile scenes in our simulator and in ODE and Bullet, and compare them.
 #include <iostream>
 
+#include "reference/ode_engine.hpp"
 #include "sim/io/input_error.hpp"
 #include "validation/cli/commands.hpp"
 #include "validation/engine_factory.hpp"
-#include "validation/report_directory.hpp"
+#include "validation/output_safety.hpp"
 
 int main(int argc, char** argv) {
   using namespace boxpile::cli;
@@ -12,8 +13,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("boxpile ") + BOXPILE_VERSION);
   // No command runs the main job: compare on the default scene (the bone and the pile).
   app.require_subcommand(0, 1);
-  app.footer("Without a command, boxpile runs `compare` on fixtures/scenes/bone_hits_pile.json into "
-             "./boxpile-report/.");
+  app.footer(std::string("Without a command, boxpile runs `compare` on fixtures/scenes/bone_hits_pile.json into "
+                          "./boxpile-report/.\n") +
+             kExitCodesHelp);
 
   ContactsOptions contacts;
   add_contacts_command(app, contacts);
@@ -46,8 +48,14 @@ int main(int argc, char** argv) {
   } catch (const boxpile::UnknownEngine& e) {
     std::cerr << "boxpile: error: " << e.what() << '\n';
     return kExitBadInput;
-  } catch (const boxpile::ReportDirectoryError& e) {
+  } catch (const boxpile::OutputError& e) {
     std::cerr << "boxpile: error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const UsageError& e) {
+    std::cerr << "boxpile: error: " << e.what() << '\n';
+    return kExitBadInput;
+  } catch (const boxpile::OdeError& e) {
+    std::cerr << "boxpile: error: " << e.what() << " (the input is outside what ODE can take)\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "boxpile: error: " << e.what() << '\n';

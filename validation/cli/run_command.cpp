@@ -1,15 +1,20 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 
 #include "reference/ode_engine.hpp"
+#include "sim/finite.hpp"
 #include "sim/io/scene_loader.hpp"
+#include "sim/time_steps.hpp"
+#include "sim/world.hpp"
 #include "validation/cli/commands.hpp"
 #include "validation/cli/json_output.hpp"
-#include "sim/world.hpp"
+#include "validation/cli/progress.hpp"
 #include "validation/engine_factory.hpp"
+#include "validation/output_safety.hpp"
 #include "validation/state_meter.hpp"
 
 namespace boxpile::cli {
@@ -39,10 +44,8 @@ nlohmann::json solver_json(const World& world) {
           {"collision_events", world.events().size()}};
 }
 
-bool finite_state(const BodyState& s) {
-  return s.position.allFinite() && s.orientation.coeffs().allFinite() && s.velocity.allFinite() &&
-         s.angular_velocity.allFinite();
-}
+// Runs at least this long show their progress on stderr.
+constexpr long kProgressMinSteps = 100'000;
 
 std::string format(double x, const char* fmt = "%.6g") {
   char buf[64];
@@ -87,11 +90,9 @@ void add_run_command(CLI::App& app, RunOptions& options) {
   cmd->add_option("scene", options.scene, "Scene file (JSON, docs/scene-format.md)")->required();
   cmd->add_option("--engine", options.engine, "Engine: own, ode or bullet")
       ->required();
-  cmd->add_option("--dt", options.dt, "Time step in s (default: the scene's)")->check(CLI::PositiveNumber);
-  cmd->add_option("--duration", options.duration, "Simulated time in s (default: the scene's)")
-      ->check(CLI::NonNegativeNumber);
+  add_time_options(*cmd, options.dt, options.duration);
   cmd->add_option("--every", options.every, "Record a frame every K steps (and at the start)")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()))  // (PositiveNumber prints DBL_MAX in full)
       ->capture_default_str();
   cmd->add_option("--out", options.out,
                   "Write the frames as JSON to this file (atomically); without it, print a summary");
@@ -99,16 +100,20 @@ void add_run_command(CLI::App& app, RunOptions& options) {
       ->check(CLI::IsMember({"quickstep", "step"}))
       ->capture_default_str();
   cmd->add_option("--iterations", options.iterations,
-                  "Solver iterations: ODE QuickStep's (default 20) or Bullet's (default 10)")
-      ->check(CLI::PositiveNumber);
+                  "Solver iterations: ODE QuickStep's (default 20) or Bullet's (default 10)");
+  add_limit_options(*cmd, options.limits, true);
 }
 
 int run_run(const RunOptions& options) {
-  Scene scene = load_scene(options.scene);
-  if (options.dt) scene.time.dt = *options.dt;
-  if (options.duration) scene.time.duration = *options.duration;
+  // Every check before the first step: the output location, the scene, the flags.
+  std::optional<OutputFile> out;
+  if (options.out) out.emplace(*options.out, std::vector<std::filesystem::path>{options.scene});
+  check_engine_name(options.engine);
+  if (options.iterations) check_iterations(*options.iterations, options.limits);
+  Scene scene = load_scene(options.scene, options.limits.load());
+  apply_time_options(scene, options.dt, options.duration, options.limits);
   const double dt = scene.time.dt;
-  const long steps = std::lround(scene.time.duration / dt);
+  const long steps = step_count(scene.time);
 
   ReferenceSettings settings;
   settings.ode_method = options.ode_method == "step" ? OdeStepMethod::Step : OdeStepMethod::QuickStep;
@@ -117,7 +122,7 @@ int run_run(const RunOptions& options) {
     settings.bullet_iterations = *options.iterations;
   }
   const std::unique_ptr<Engine> engine = make_engine(options.engine, scene, settings);
-  const bool record = !options.out.empty();
+  const bool record = out.has_value();
 
   std::vector<BodyState> states;
   std::vector<BodyContact> contacts;
@@ -135,24 +140,37 @@ int run_run(const RunOptions& options) {
 
   using Clock = std::chrono::steady_clock;
   Clock::duration stepping{};
-  bool blew_up = false;
+  ProgressPrinter progress;
+  const bool show_progress = steps >= kProgressMinSteps;
+  const long progress_every = std::max(1L, steps / 100);
   if (record) add_frame();
-  for (long k = 1; k <= steps; ++k) {
-    const Clock::time_point start = Clock::now();
-    engine->step();
-    stepping += Clock::now() - start;
-    if (record && k % options.every == 0) add_frame();
+  try {
+    const InterruptScope scope;
+    for (long k = 1; k <= steps; ++k) {
+      const Clock::time_point start = Clock::now();
+      engine->step();
+      stepping += Clock::now() - start;
+      engine->body_states(states);
+      if (const auto bad = find_non_finite(states)) {
+        // Nothing after a non-finite state means anything: stop, and write nothing.
+        std::cerr << "boxpile: error: " << options.engine << ": " << describe_non_finite(k, engine->time(), states, *bad)
+                  << (record ? "; nothing written\n" : "\n");
+        return kExitFailure;
+      }
+      if (record && k % options.every == 0) add_frame();
+      if (k % progress_every == 0) {
+        throw_if_interrupted();
+        if (show_progress) progress({options.engine, "", 0, 1, static_cast<double>(k) / static_cast<double>(steps)});
+      }
+    }
+  } catch (const Interrupted&) {
+    std::cerr << "\nboxpile: interrupted" << (record ? ": nothing written\n" : "\n");
+    return kExitInterrupted;
   }
   const double wall = std::chrono::duration<double>(stepping).count();
 
   engine->body_states(states);
   engine->contacts(contacts);
-  for (const BodyState& s : states) {
-    if (!finite_state(s)) {
-      std::cerr << "boxpile: warning: body \"" << s.name << "\" has a non-finite state at the end\n";
-      blew_up = true;
-    }
-  }
   if (const auto* ode = dynamic_cast<const OdeEngine*>(engine.get()); ode && ode->messages() > 0) {
     std::cerr << "boxpile: note: ODE reported " << ode->messages() << " message(s); the last: "
               << ode_messages().last << '\n';
@@ -175,7 +193,7 @@ int run_run(const RunOptions& options) {
                                 {"frames", std::move(frames)},
                                 {"final", {{"t", engine->time()}, {"bodies", bodies_json(states)}}},
                                 {"events", std::move(events)}};
-    write_json_file(doc, options.out);
+    write_json_file(doc, *out);
   } else {
     print_summary(scene, options.engine, steps, wall, states, contacts.size());
     const FrameMetrics m = meter.measure(states);
@@ -183,7 +201,7 @@ int run_run(const RunOptions& options) {
               << " J), deepest penetration " << format(m.penetration.depth, "%.3g") << " m, levitation "
               << format(m.levitation, "%.3g") << " m\n";
   }
-  return blew_up ? kExitFailure : kExitOk;
+  return kExitOk;
 }
 
 }  // namespace boxpile::cli
