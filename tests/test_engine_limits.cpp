@@ -115,7 +115,7 @@ TEST_CASE("an ODE internal assertion becomes an OdeError, not an abort", "[relia
   CHECK(s[0].position.z() == Approx(0.5).margin(0.01));
 }
 
-TEST_CASE("a run that turns non-finite stops there; compare marks the engine failed", "[reliability][compare]") {
+TEST_CASE("a run that turns non-finite stops there and compare marks the engine failed", "[reliability][compare]") {
   // A lone cube spun at 1e150 rad/s (refused by the loader, built here directly): finite at the
   // start, its squared speed overflows within a few of our steps.
   Scene scene = two_cubes(1.0, 0.5, 0.0, 1e150);

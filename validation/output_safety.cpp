@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 [[noreturn]] void refuse(const fs::path& target, const std::string& why) {
-  throw OutputError("output " + target.string() + ": " + why);
+  throw OutputError("output", target, why);
 }
 
 // --- the staging registry, read by signal handlers -------------------------------------------

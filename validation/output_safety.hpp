@@ -35,7 +35,13 @@ namespace boxpile {
 // The output location cannot be used. Bad input: the command line exits with 2.
 class OutputError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  // "output PATH: WHY" (`what` names the kind of output: "output", "report directory", ...).
+  OutputError(const std::string& what, const std::filesystem::path& target, const std::string& why)
+      : std::runtime_error(what + " " + target.string() + ": " + why), why_(why) {}
+  const std::string& why() const { return why_; }
+
+ private:
+  std::string why_;
 };
 
 enum class OutputKind { File, Directory };

@@ -20,14 +20,14 @@ namespace fs = std::filesystem;
 constexpr const char* kMarker = "report.json";
 
 [[noreturn]] void refuse(const fs::path& target, const std::string& why) {
-  throw ReportDirectoryError("report directory " + target.string() + ": " + why);
+  throw ReportDirectoryError(target, why);
 }
 
 void check_target(const fs::path& target, const std::vector<fs::path>& inputs) {
   try {
     check_output_path(target, OutputKind::Directory, inputs);
   } catch (const OutputError& e) {
-    throw ReportDirectoryError(e.what());
+    refuse(target, e.why());
   }
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(target, ec))) return;
@@ -51,7 +51,7 @@ ReportDirectory::ReportDirectory(fs::path target, const std::vector<fs::path>& i
   try {
     parent = prepare_parent(target_);
   } catch (const OutputError& e) {
-    throw ReportDirectoryError(e.what());
+    refuse(target, e.why());
   }
   // A hidden sibling, so that the final rename stays on one file system.
   std::string name(1, '.');

@@ -18,7 +18,8 @@ namespace boxpile {
 // exits with 2.
 class ReportDirectoryError : public OutputError {
  public:
-  using OutputError::OutputError;
+  ReportDirectoryError(const std::filesystem::path& target, const std::string& why)
+      : OutputError("report directory", target, why) {}
 };
 
 class ReportDirectory {
