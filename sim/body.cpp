@@ -1,9 +1,16 @@
 #include "sim/body.hpp"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <utility>
 
 namespace boxpile {
+
+Material combine_materials(const Material& a, const Material& b) {
+  return {std::sqrt(a.friction * b.friction), std::max(a.restitution, b.restitution)};
+}
+
 namespace {
 
 double box_volume(const Vec3& half_extents) {

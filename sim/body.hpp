@@ -24,6 +24,10 @@ struct Material {
   double restitution = 0.0;  // Newton coefficient e in [0, 1]
 };
 
+// Pair materials: friction is the geometric mean sqrt(mu_a mu_b) (zero if either is
+// frictionless), restitution the larger of the two (docs/scene-format.md).
+Material combine_materials(const Material& a, const Material& b);
+
 // Mass properties of a set of boxes of uniform density, about their common centre of mass.
 struct MassProperties {
   double mass = 0.0;                     // kg

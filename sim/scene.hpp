@@ -23,7 +23,7 @@ struct Effects {
   bool friction = true;
   bool restitution = true;
   bool damping = false;
-  bool gyroscopic = false;  // off unless listed: the mission neglects the gyroscopic term
+  bool gyroscopic = false;  // off unless listed: the lab text neglects the gyroscopic term
 };
 
 // Air damping, applied to momenta when the `damping` effect is on: dP = -linear * P dt.
@@ -67,7 +67,7 @@ struct TimeSettings {
 };
 
 // A wire: the body's anchor point slides without friction along the segment from `from` to `to`
-// (and stops at its ends), while the body swings freely about the anchor. The mission's "bone"
+// (and stops at its ends), while the body swings freely about the anchor. The lab text's "bone"
 // is a compound body with a wire.
 struct Wire {
   Vec3 from = Vec3::Zero();    // m, world

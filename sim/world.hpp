@@ -1,7 +1,10 @@
-// Our simulator: a World built from a Scene, stepped by the Guendelman-Bridson-Fedkiw method.
+// Our simulator: a World built from a Scene. The world owns what every contact method shares
+// (the bodies, the contact set, the integrators, the wires); the method that resolves the
+// contacts is a stage chosen by the scene's `solver.method` (sim/solver/contact_method.hpp).
 #pragma once
 
-#include <cstdint>
+#include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -10,32 +13,18 @@
 #include "sim/collision/collide.hpp"
 #include "sim/engine.hpp"
 #include "sim/scene.hpp"
-#include "sim/solver/loops.hpp"
-#include "sim/solver/recovery.hpp"
+#include "sim/solver/contact_method.hpp"
+#include "sim/solver/step_context.hpp"
 #include "sim/solver/wire.hpp"
 
 namespace boxpile {
 
-// How often each stage ran and how much work it did: a scene without an effect never pays for it.
-struct WorldCounters {
-  std::uint64_t steps = 0;
-  std::uint64_t broadphase_pairs = 0;     // pairs the broadphase passed on
-  std::uint64_t narrowphase_calls = 0;    // box-box and box-plane tests run
-  std::uint64_t collision_loop_runs = 0;
-  std::uint64_t contact_loop_runs = 0;
-  std::uint64_t shock_propagation_runs = 0;
-  std::uint64_t recovery_runs = 0;
-  std::uint64_t gravity_applications = 0;  // per body and step
-  std::uint64_t damping_applications = 0;  // per body and step
-  std::uint64_t gyroscopic_updates = 0;    // per body and step
-  ImpulseCounters impulses;
-};
-
 class World final : public Engine {
  public:
-  explicit World(const Scene& scene);
+  // `name` is what the engine reports ("own", or the name of the engine that forced a method).
+  explicit World(const Scene& scene, std::string name = "own");
 
-  std::string_view name() const override { return "own"; }
+  std::string_view name() const override { return name_; }
   void step() override;
   double time() const override { return time_; }
   void body_states(std::vector<BodyState>& out) const override;
@@ -50,37 +39,24 @@ class World final : public Engine {
   const std::vector<WireJoint>& wires() const { return wires_; }
 
  private:
-  // The stages of one step, in the order of the method (see docs/solver.md).
-  void find_contacts();
-  void prepare_solver_contacts();
-  void integrate_momenta();
-  void integrate_positions();
-  // The wires' velocity constraint on every wired body (the bone), and the projection after the
-  // position update.
-  void enforce_wires();
-  void project_wires();
+  // The world's own stage: the contact set of a step of length dt, with speculative margins.
+  void find_contacts(double dt);
 
   Scene scene_;
+  std::string name_;
   std::vector<RigidBody> bodies_;
   RigidBody ground_;  // a fixed body standing for the half-space in the solver
   double time_ = 0.0;
 
   SweepAndPrune broadphase_;
   std::vector<BodyContact> contacts_;
-  std::vector<SolverContact> solver_contacts_;
-  ShockPropagation shock_;
-  PenetrationRecovery recovery_;
   std::vector<WireJoint> wires_;
-  std::vector<Vec3> start_v_, start_omega_;
+  std::unique_ptr<ContactMethod> method_;
   std::vector<double> margins_;          // per body, this step's speculative margin, m
-  std::vector<double> bounding_radius_;  // per body, m  // velocities at the step's start (explicit Euler)
+  std::vector<double> bounding_radius_;  // per body, m
   std::vector<CollisionEvent> events_;
   WorldCounters counters_;
   StepStats stats_;
 };
-
-// Pair materials: friction is the geometric mean sqrt(mu_a mu_b) (zero if either is
-// frictionless), restitution the larger of the two (docs/scene-format.md).
-Material combine_materials(const Material& a, const Material& b);
 
 }  // namespace boxpile

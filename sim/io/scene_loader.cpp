@@ -1,6 +1,6 @@
 #include "sim/io/scene_loader.hpp"
 
-#include "sim/solver/loops.hpp"
+#include "sim/solver/step_context.hpp"
 
 #include <algorithm>
 #include <array>

@@ -4,8 +4,14 @@
 
 namespace boxpile {
 
-void PenetrationRecovery::run(const SolverBodies& sb, const std::vector<SolverContact>& contacts,
-                              double beta, double slop, double dt, int passes) {
+void PenetrationRecovery::run(const ImpulseStep& step) {
+  const SolverBodies& sb = step.sb;
+  const std::vector<SolverContact>& contacts = step.contacts;
+  const SolverSettings& settings = step.world.scene.solver;
+  const double beta = settings.penetration_recovery;
+  const double slop = settings.penetration_slop;
+  const double dt = step.world.dt;
+  const int passes = settings.recovery_passes;
   const std::size_t n = sb.bodies.size();
   pseudo_v_.assign(n, Vec3::Zero());
   pseudo_omega_.assign(n, Vec3::Zero());

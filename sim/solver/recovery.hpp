@@ -7,17 +7,17 @@
 
 #include <vector>
 
-#include "sim/solver/loops.hpp"
+#include "sim/solver/impulse_step.hpp"
 
 namespace boxpile {
 
 class PenetrationRecovery {
  public:
-  // Solves, in `passes` sequential passes over the contacts deeper than `slop`, for normal
-  // pseudo-impulses lambda >= 0 that give each point the separating pseudo-velocity
-  // beta (depth - slop) / dt. Fills pseudo_v and pseudo_omega (per body).
-  void run(const SolverBodies& sb, const std::vector<SolverContact>& contacts, double beta,
-           double slop, double dt, int passes);
+  // Solves, in `recovery_passes` sequential passes over the contacts deeper than
+  // `penetration_slop`, for normal pseudo-impulses lambda >= 0 that give each point the
+  // separating pseudo-velocity beta (depth - slop) / dt, beta = `penetration_recovery`. Fills
+  // pseudo_v and pseudo_omega (per body).
+  void run(const ImpulseStep& step);
 
   const std::vector<Vec3>& pseudo_v() const { return pseudo_v_; }
   const std::vector<Vec3>& pseudo_omega() const { return pseudo_omega_; }

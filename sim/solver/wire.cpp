@@ -55,4 +55,15 @@ void project_onto_wire(RigidBody& body, const WireJoint& wire) {
   body.x += wire.from + s * wire.direction - p;
 }
 
+void enforce_wires(std::vector<RigidBody>& bodies, const std::vector<WireJoint>& wires) {
+  for (const WireJoint& w : wires) enforce_wire_velocity(bodies[w.body], w);
+}
+
+void project_wires(std::vector<RigidBody>& bodies, const std::vector<WireJoint>& wires) {
+  for (const WireJoint& w : wires) {
+    project_onto_wire(bodies[w.body], w);
+    bodies[w.body].update_derived();
+  }
+}
+
 }  // namespace boxpile

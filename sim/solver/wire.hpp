@@ -1,4 +1,4 @@
-// The wire constraint of the mission's "bone": a point of a body (its anchor) slides without
+// The wire constraint of the lab text's "bone": a point of a body (its anchor) slides without
 // friction along a straight segment and stops at its ends, while the body swings freely about
 // it. Enforced the way the course treats the bone, approximately: an impulse that cancels the
 // anchor's velocity across the wire (and along it at an end, when it would leave), and after
@@ -36,5 +36,10 @@ void enforce_wire_velocity(RigidBody& body, const WireJoint& wire);
 
 // Position projection: moves the body so that its anchor lies on the segment (the closest point).
 void project_onto_wire(RigidBody& body, const WireJoint& wire);
+
+// The two wire stages of a step, over every wire: the velocity constraint on each wired body,
+// and the projection of its anchor after the position update.
+void enforce_wires(std::vector<RigidBody>& bodies, const std::vector<WireJoint>& wires);
+void project_wires(std::vector<RigidBody>& bodies, const std::vector<WireJoint>& wires);
 
 }  // namespace boxpile

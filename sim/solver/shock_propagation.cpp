@@ -1,7 +1,6 @@
-#include "sim/solver/loops.hpp"
+#include "sim/solver/shock_propagation.hpp"
 
 #include <algorithm>
-#include <cassert>
 
 namespace boxpile {
 
@@ -18,85 +17,14 @@ double approach_residual(const SolverBodies& sb, const std::vector<SolverContact
   return worst;
 }
 
-void collision_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int passes,
-                    bool restitution, bool friction, double time, double dt, double event_speed,
-                    ImpulseCounters& counters, StepStats& stats, std::vector<CollisionEvent>& events) {
-  assert(passes <= kMaxSolverPasses);
-  const std::size_t first_event = events.size();
-  // A point still apart collides in this step only if it would close its gap within the step;
-  // decided once, before any impulse, so that the points of one face landing together all take
-  // part even after the first of them has slowed the body.
-  for (SolverContact& c : contacts) {
-    c.start_un = c.n.dot(sb.relative_velocity(c));
-    c.active = c.start_un < allow_gap(c, 0.0, dt);
-  }
-  for (int pass = 0; pass < passes; ++pass) {
-    bool any_active = false;
-    for (SolverContact& c : contacts) {
-      if (!c.active) continue;
-      any_active = true;
-      const Vec3 u = sb.relative_velocity(c);
-      if (c.n.dot(u) >= 0.0) continue;
-      const double e = restitution ? c.restitution : 0.0;
-      const Vec3 j = newton_coulomb_impulse(c, u, e, friction, counters);
-      sb.apply(c, j, true, true);
-      // Events are judged by the approach before the loop's first impulse: later passes see a
-      // body already turned by its other points' impulses.
-      const double approach = -c.start_un;
-      if (approach > event_speed) {
-        // One event per pair and step: contacts of a pair are consecutive, so the pair's event,
-        // if any, is among those recorded since the loop began.
-        auto same_pair = [&](const CollisionEvent& ev) { return ev.body_a == c.a && ev.body_b == c.b; };
-        auto it = std::find_if(events.begin() + static_cast<std::ptrdiff_t>(first_event), events.end(), same_pair);
-        if (it == events.end()) {
-          events.push_back({time, c.a, c.b, 0.0, 0.0});
-          it = events.end() - 1;
-        }
-        it->impulse += j.norm();
-        it->approach_speed = std::max(it->approach_speed, approach);
-      }
-    }
-    if (!any_active) break;
-    // Drop the contacts that now separate: they take no part in the coming passes. The largest
-    // approach among those kept is the pass's residual.
-    double residual = 0.0;
-    for (SolverContact& c : contacts) {
-      if (!c.active) continue;
-      const double approach = -c.n.dot(sb.relative_velocity(c));
-      if (approach <= 0.0) c.active = false;
-      residual = std::max(residual, approach);
-    }
-    stats.collision_residual[pass] = residual;
-    stats.collision_passes_used = pass + 1;
-  }
-}
-
-void contact_loop(SolverBodies& sb, std::vector<SolverContact>& contacts, int passes, bool friction,
-                  double dt, ImpulseCounters& counters, StepStats& stats) {
-  assert(passes <= kMaxSolverPasses);
-  for (SolverContact& c : contacts) begin_resting_phase(c, sb.relative_velocity(c));
-  for (int pass = 0; pass < passes; ++pass) {
-    // e = -1 would leave velocities unchanged; the ramp starts one step above it and ends at 0,
-    // slowing resting contacts gradually instead of stopping the first one met at full force.
-    // Pass k asks each approaching point for u_n >= -e_k u_n(start).
-    const double e = -1.0 + static_cast<double>(pass + 1) / passes;
-    // The residual of a pass is the largest approach met in it, each contact measured just
-    // before its impulse (free: the velocity is needed anyway).
-    double residual = 0.0;
-    for (SolverContact& c : contacts) {
-      const Vec3 u = sb.relative_velocity(c);
-      residual = std::max(residual, allow_gap(c, 0.0, dt) - c.n.dot(u));
-      const double target = allow_gap(c, c.start_un < 0.0 ? -e * c.start_un : 0.0, dt);
-      const Vec3 j = resting_impulse(c, u, target, friction, counters);
-      sb.apply(c, j, true, true);
-    }
-    stats.contact_residual[pass] = residual;
-    stats.contact_passes_used = pass + 1;
-  }
-}
-
-void ShockPropagation::run(SolverBodies& sb, std::vector<SolverContact>& contacts, int passes,
-                           bool friction, double dt, ImpulseCounters& counters, StepStats& stats) {
+void ShockPropagation::run(ImpulseStep& step) {
+  SolverBodies& sb = step.sb;
+  std::vector<SolverContact>& contacts = step.contacts;
+  const int passes = step.world.scene.solver.shock_passes;
+  const bool friction = step.world.scene.effects.friction;
+  const double dt = step.world.dt;
+  ImpulseCounters& counters = step.world.counters.impulses;
+  StepStats& stats = step.world.stats;
   const int n = static_cast<int>(sb.bodies.size());
   auto level_of = [&](int body) { return body < 0 ? -1 : level_[body]; };
 

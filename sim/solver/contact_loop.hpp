@@ -1,0 +1,12 @@
+// The contact loop of the Guendelman-Bridson-Fedkiw step (sec. 6 of the paper).
+#pragma once
+
+#include "sim/solver/impulse_step.hpp"
+
+namespace boxpile {
+
+// Contact loop: `contact_passes` passes over every contact of the step's set, restitution ramped
+// e_k = -1 + (k + 1) / passes (from -1 + 1/n up to 0), nothing removed.
+void contact_loop(ImpulseStep& step);
+
+}  // namespace boxpile

@@ -1,0 +1,99 @@
+#include "sim/solver/impulse_method.hpp"
+
+#include "sim/solver/collision_loop.hpp"
+#include "sim/solver/contact_loop.hpp"
+#include "sim/solver/integrate.hpp"
+
+namespace boxpile {
+
+ImpulseMethod::ImpulseMethod(std::size_t body_count) {
+  start_v_.resize(body_count);
+  start_omega_.resize(body_count);
+  solver_contacts_.reserve(8 * body_count);
+}
+
+void ImpulseMethod::step(StepContext& ctx) {
+  const SolverSettings& s = ctx.scene.solver;
+  std::vector<RigidBody>& bodies = ctx.bodies;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    start_v_[i] = bodies[i].v;
+    start_omega_[i] = bodies[i].omega;
+  }
+
+  // 1. The contact set (found by the world), as the solver sees it through the whole step.
+  prepare_solver_contacts(ctx);
+  ImpulseStep step{ctx, SolverBodies{bodies, ctx.ground}, solver_contacts_};
+  ctx.stats = StepStats{};
+
+  // 2. Collision loop: resolve approaching contacts with the scene's restitution.
+  collision_loop(step);
+  ++ctx.counters.collision_loop_runs;
+
+  // 3. External forces on the momenta: gravity, air damping; the wires take their share.
+  integrate_momenta(ctx);
+  enforce_wires(bodies, ctx.wires);
+
+  // 4. Contact loop: every contact of the set, restitution ramped up to 0.
+  contact_loop(step);
+  ++ctx.counters.contact_loop_runs;
+  enforce_wires(bodies, ctx.wires);
+
+  // 5. Shock propagation: from the ground up, each level frozen once solved.
+  if (s.shock_propagation) {
+    shock_.run(step);
+    ++ctx.counters.shock_propagation_runs;
+  }
+  enforce_wires(bodies, ctx.wires);
+
+  // Penetration recovery: pseudo-velocities that push overlaps apart (positions only).
+  if (s.penetration_recovery > 0.0) {
+    recovery_.run(step);
+    ++ctx.counters.recovery_runs;
+  }
+
+  // 6. Positions and orientations; wired anchors back onto their wires.
+  integrate_positions(ctx);
+  project_wires(bodies, ctx.wires);
+}
+
+void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
+  solver_contacts_.clear();
+  for (const BodyContact& bc : ctx.contacts) {
+    const RigidBody& a = ctx.bodies[bc.body_a];
+    const RigidBody& b = bc.body_b == kGround ? ctx.ground : ctx.bodies[bc.body_b];
+    SolverContact c;
+    c.a = bc.body_a;
+    c.b = bc.body_b;
+    c.n = bc.contact.normal;
+    c.ra = bc.contact.position - a.x;
+    c.rb = bc.contact.position - b.x;
+    c.depth = bc.contact.depth;
+    const Material m = combine_materials(a.material, b.material);
+    c.friction = m.friction;
+    c.restitution = m.restitution;
+    if (!a.fixed) c.Ka = collision_matrix_share(a, c.ra);
+    if (!b.fixed) c.Kb = collision_matrix_share(b, c.rb);
+    set_collision_matrix(c, !a.fixed, !b.fixed);
+    solver_contacts_.push_back(c);
+  }
+}
+
+void ImpulseMethod::integrate_positions(StepContext& ctx) {
+  const SolverSettings& s = ctx.scene.solver;
+  const bool explicit_euler = s.integrator == PositionIntegrator::ExplicitEuler;
+  for (std::size_t i = 0; i < ctx.bodies.size(); ++i) {
+    RigidBody& b = ctx.bodies[i];
+    if (b.fixed) continue;
+    // Explicit Euler moves with the velocities the step started with; semi-implicit Euler with
+    // the ones the step just resolved.
+    Vec3 v = explicit_euler ? start_v_[i] : b.v;
+    Vec3 w = explicit_euler ? start_omega_[i] : b.omega;
+    if (s.penetration_recovery > 0.0) {  // pushed apart, positions only
+      v += recovery_.pseudo_v()[i];
+      w += recovery_.pseudo_omega()[i];
+    }
+    advance_pose(b, v, w, ctx.dt, ctx.scene.effects.gyroscopic, ctx.counters);
+  }
+}
+
+}  // namespace boxpile

@@ -1,0 +1,30 @@
+// The impulse method: the Guendelman-Bridson-Fedkiw step (collision loop, contact loop, shock
+// propagation) with speculative contacts and penetration recovery (docs/solver.md).
+#pragma once
+
+#include <vector>
+
+#include "sim/solver/contact_method.hpp"
+#include "sim/solver/impulse.hpp"
+#include "sim/solver/recovery.hpp"
+#include "sim/solver/shock_propagation.hpp"
+
+namespace boxpile {
+
+class ImpulseMethod final : public ContactMethod {
+ public:
+  explicit ImpulseMethod(std::size_t body_count);
+  void step(StepContext& ctx) override;
+
+ private:
+  // The stages of the method that are its own; the rest are the world's shared stages.
+  void prepare_solver_contacts(const StepContext& ctx);
+  void integrate_positions(StepContext& ctx);
+
+  std::vector<SolverContact> solver_contacts_;
+  ShockPropagation shock_;
+  PenetrationRecovery recovery_;
+  std::vector<Vec3> start_v_, start_omega_;  // velocities at the step's start (explicit Euler)
+};
+
+}  // namespace boxpile

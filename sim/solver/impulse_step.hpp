@@ -1,0 +1,60 @@
+// What the velocity stages of the Guendelman-Bridson-Fedkiw step ("Nonconvex rigid bodies with
+// stacking", SIGGRAPH 2003, sec. 5-7, in the simplified form of the course's lab text) share:
+// the bodies and contacts they work on, and the step context that carries them.
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "sim/body.hpp"
+#include "sim/solver/impulse.hpp"
+#include "sim/solver/step_context.hpp"
+
+namespace boxpile {
+
+// The bodies and contacts the loops work on. `ground` is a fixed body standing for the
+// half-space (index kGround in contacts).
+struct SolverBodies {
+  std::vector<RigidBody>& bodies;
+  const RigidBody& ground;
+
+  RigidBody& at(int i) { return bodies[i]; }
+  const RigidBody& get(int i) const { return i < 0 ? ground : bodies[i]; }
+  // Velocity of A's contact point relative to B's.
+  Vec3 relative_velocity(const SolverContact& c) const {
+    return get(c.a).v + get(c.a).omega.cross(c.ra) - get(c.b).v - get(c.b).omega.cross(c.rb);
+  }
+  // Applies j to A and -j to B at the contact offsets; frozen or fixed bodies do not move.
+  void apply(const SolverContact& c, const Vec3& j, bool a_moves, bool b_moves) {
+    if (a_moves && !get(c.a).fixed) push(at(c.a), j, c.ra);
+    if (b_moves && c.b >= 0 && !get(c.b).fixed) push(at(c.b), -j, c.rb);
+  }
+
+ private:
+  static void push(RigidBody& body, const Vec3& impulse, const Vec3& r) {
+    body.P += impulse;
+    body.L += r.cross(impulse);
+    body.v = body.inv_mass * body.P;
+    body.omega = body.inv_inertia_world * body.L;
+  }
+};
+
+// The step context of the impulse loops: the world's step, the bodies as the loops see them, and
+// the step's solver contacts.
+struct ImpulseStep {
+  StepContext& world;
+  SolverBodies sb;
+  std::vector<SolverContact>& contacts;
+};
+
+// Speculative contacts: a point `gap` = -depth > 0 apart may approach at up to gap / dt in this
+// step without touching. Returns the lowest normal velocity the step allows, min(target, -gap/dt).
+inline double allow_gap(const SolverContact& c, double target, double dt) {
+  return c.depth < 0.0 ? std::min(target, c.depth / dt) : target;
+}
+
+// Largest approaching normal velocity over the contacts beyond what their gaps allow (0 when
+// none approaches), m/s.
+double approach_residual(const SolverBodies& sb, const std::vector<SolverContact>& contacts, double dt);
+
+}  // namespace boxpile

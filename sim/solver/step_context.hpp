@@ -1,0 +1,81 @@
+// The step context: what every stage of a step works on, the world's shared parts by reference
+// (scene settings, bodies, the contact set, wires), the step's time and length, and where the
+// stages record their work. The contact methods (impulse, penalty) take it instead of long
+// argument lists.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "sim/body.hpp"
+#include "sim/collision/collide.hpp"
+#include "sim/scene.hpp"
+#include "sim/solver/impulse.hpp"
+#include "sim/solver/wire.hpp"
+
+namespace boxpile {
+
+// The largest number of passes a loop may be given (keeps per-pass statistics fixed-size).
+inline constexpr int kMaxSolverPasses = 64;
+
+// What the penalty method did: the tests check that its anchors follow the contacts.
+struct PenaltyCounters {
+  std::uint64_t spring_evaluations = 0;  // contact points that carried a spring force
+  std::uint64_t anchors_created = 0;     // contacts that began (a new friction anchor)
+  std::uint64_t anchors_slipped = 0;     // anchors moved because the spring left the static cone
+};
+
+// How often each stage ran and how much work it did: a scene without an effect never pays for it.
+struct WorldCounters {
+  std::uint64_t steps = 0;
+  std::uint64_t broadphase_pairs = 0;     // pairs the broadphase passed on
+  std::uint64_t narrowphase_calls = 0;    // box-box and box-plane tests run
+  std::uint64_t collision_loop_runs = 0;
+  std::uint64_t contact_loop_runs = 0;
+  std::uint64_t shock_propagation_runs = 0;
+  std::uint64_t recovery_runs = 0;
+  std::uint64_t penalty_substeps = 0;
+  std::uint64_t gravity_applications = 0;  // per body and step
+  std::uint64_t damping_applications = 0;  // per body and step
+  std::uint64_t gyroscopic_updates = 0;    // per body and step
+  ImpulseCounters impulses;
+  PenaltyCounters penalty;
+};
+
+// What the impulse solver did in one step, for the convergence plots and the effect tests.
+struct StepStats {
+  int collision_passes_used = 0;  // passes run before every contact separated (or the limit)
+  // Largest approaching normal velocity left after each collision-loop pass, m/s.
+  std::array<double, kMaxSolverPasses> collision_residual{};
+  // The same after each contact-loop pass (with that pass's ramped restitution).
+  std::array<double, kMaxSolverPasses> contact_residual{};
+  int contact_passes_used = 0;
+  int shock_levels = 0;
+  int shock_passes_used = 0;  // summed over the levels
+  double residual_after_shock = 0.0;
+};
+
+// A collision event: an impulse at an approach faster than resting contact explains.
+struct CollisionEvent {
+  double time = 0.0;
+  int body_a = 0;
+  int body_b = 0;
+  double impulse = 0.0;  // N s, summed over the pair's points in that step
+  double approach_speed = 0.0;  // m/s, the fastest approaching point
+};
+
+struct StepContext {
+  const Scene& scene;
+  std::vector<RigidBody>& bodies;
+  const RigidBody& ground;                  // a fixed body standing for the half-space
+  const std::vector<BodyContact>& contacts;  // found at the start of this step
+  const std::vector<WireJoint>& wires;
+  double time = 0.0;  // s, at the step's start
+  double dt = 0.0;    // s, this step's length (a penalty substep is a step of its own)
+  WorldCounters& counters;
+  StepStats& stats;
+  std::vector<CollisionEvent>& events;
+};
+
+}  // namespace boxpile
