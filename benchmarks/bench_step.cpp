@@ -9,6 +9,7 @@
 
 #include "reference/settings.hpp"
 #include "sim/io/scene_loader.hpp"
+#include "sim/time_steps.hpp"
 #include "validation/engine_factory.hpp"
 
 namespace boxpile {
@@ -17,7 +18,7 @@ namespace {
 void step_scene(benchmark::State& state, const std::string& scene_name, const std::string& engine,
                 const ReferenceSettings& settings) {
   const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + scene_name + ".json");
-  const long steps = std::lround(scene.time.duration / scene.time.dt);
+  const long steps = step_count(scene.time);
   for (auto _ : state) {
     state.PauseTiming();
     const auto world = make_engine(engine, scene, settings);
