@@ -145,24 +145,25 @@ run_boxpile(0 --help)
 expect_contains("${out}" "Exit codes: 0 success; 1 a run that went wrong")
 
 # --- interruption and fatal signals leave no staging --------------------------------------
-# SIGINT during a long run: exit 130, nothing written, no staging file.
-execute_process(COMMAND sh -c "\"${BOXPILE}\" run \"${stack}\" --engine own --duration 4000 --out \"${WORK}/int/run.json\" & pid=$!; sleep 1; kill -INT $pid; wait $pid"
-                RESULT_VARIABLE code ERROR_VARIABLE stderr)
-if(NOT code EQUAL 130)
-  fail("SIGINT during run: exit ${code}, expected 130\n${stderr}")
-endif()
-if(EXISTS "${WORK}/int/run.json")
-  fail("SIGINT during run: run.json written")
-endif()
-expect_no_staging("${WORK}/int")
-# SIGABRT (what a failed assertion in an engine raises) during compare: the process dies of it,
-# and the staging directory goes with it.
-execute_process(COMMAND sh -c "\"${BOXPILE}\" compare \"${stack}\" --engines own --duration 2000 --report \"${WORK}/abrt/report\" & pid=$!; sleep 1; kill -ABRT $pid; wait $pid"
-                RESULT_VARIABLE code ERROR_VARIABLE stderr)
-if(NOT code EQUAL 134)
-  fail("SIGABRT during compare: exit ${code}, expected 134 (128 + SIGABRT)\n${stderr}")
-endif()
-if(EXISTS "${WORK}/abrt/report")
-  fail("SIGABRT during compare: a report was written")
-endif()
-expect_no_staging("${WORK}/abrt")
+# signal_run(<signal> <expected exit> <output that must not appear> args...): starts boxpile with
+# the arguments (none with spaces), sends the signal after a second, checks the exit code, that
+# the output is absent and that its directory holds no staging.
+function(signal_run signal expected output)
+  list(JOIN ARGN " " args)
+  execute_process(COMMAND sh -c "\"${BOXPILE}\" ${args} & pid=$!; sleep 1; kill -${signal} $pid; wait $pid"
+                  RESULT_VARIABLE code ERROR_VARIABLE stderr)
+  if(NOT code EQUAL expected)
+    fail("${signal} during boxpile ${args}: exit ${code}, expected ${expected}\n${stderr}")
+  endif()
+  if(EXISTS "${output}")
+    fail("${signal} during boxpile ${args}: ${output} written")
+  endif()
+  get_filename_component(dir "${output}" DIRECTORY)
+  expect_no_staging("${dir}")
+endfunction()
+
+# SIGINT during a long run: exit 130 (128 + SIGINT), nothing written.
+signal_run(INT 130 "${WORK}/int/run.json" run "${stack}" --engine own --duration 4000 --out "${WORK}/int/run.json")
+# SIGABRT (what a failed assertion in an engine raises) during compare: the process dies of it
+# (128 + SIGABRT), and the staging directory goes with it.
+signal_run(ABRT 134 "${WORK}/abrt/report" compare "${stack}" --engines own --duration 2000 --report "${WORK}/abrt/report")
