@@ -59,6 +59,11 @@ void remove_all_staged() {
   }
 }
 
+// The handlers that were in place before ours (a sanitizer's or a test framework's crash report),
+// restored for a fatal signal once the staging is gone.
+constexpr int kFatalSignals[] = {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL};
+struct sigaction g_previous[sizeof kFatalSignals / sizeof kFatalSignals[0]];
+
 // The process dies of this signal as it would have without us, once the staging is gone.
 [[noreturn]] void die_of(int sig) {
   remove_all_staged();
@@ -67,7 +72,15 @@ void remove_all_staged() {
   std::_Exit(128 + sig);
 }
 
-extern "C" void on_fatal_signal(int sig) { die_of(sig); }
+extern "C" void on_fatal_signal(int sig) {
+  remove_all_staged();
+  for (std::size_t i = 0; i < std::size(kFatalSignals); ++i) {
+    if (kFatalSignals[i] == sig) sigaction(sig, &g_previous[i], nullptr);
+  }
+  // Returning re-runs the faulting instruction (or, for a raised signal, the handler restored
+  // above runs when it is raised again), now under the previous handler.
+  if (sig == SIGABRT) std::raise(sig);
+}
 
 extern "C" void on_stop_signal(int sig) {
   if (g_scope_depth.load() > 0 && !g_interrupted) {
@@ -79,7 +92,12 @@ extern "C" void on_stop_signal(int sig) {
 
 void install_handlers_once() {
   static const bool installed = [] {
-    for (const int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL}) std::signal(sig, on_fatal_signal);
+    for (std::size_t i = 0; i < std::size(kFatalSignals); ++i) {
+      struct sigaction action {};
+      action.sa_handler = on_fatal_signal;
+      sigemptyset(&action.sa_mask);
+      sigaction(kFatalSignals[i], &action, &g_previous[i]);
+    }
     for (const int sig : {SIGINT, SIGTERM}) std::signal(sig, on_stop_signal);
     return true;
   }();
