@@ -117,6 +117,8 @@ run_boxpile(0 run "${stack}" --engine ode --iterations 2000 --max-iterations 200
 # --- smaller ones --------------------------------------------------------------------------
 run_boxpile(2 compare "${stack}" --engines own,own --report "${WORK}/twice")
 expect_contains("${err}" "--engines: \"own\" is listed twice")
+run_boxpile(2 contacts "${FIXTURES}/contacts/touching.json" --engines own,ode,own)
+expect_contains("${err}" "--engines: \"own\" is listed twice")
 # A range error says its range plainly (CLI11's PositiveNumber printed DBL_MAX in 309 digits).
 run_boxpile(2 run "${stack}" --engine own --every 0)
 string(LENGTH "${err}" length)

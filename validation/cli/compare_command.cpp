@@ -13,20 +13,6 @@
 #include "validation/report_directory.hpp"
 
 namespace boxpile::cli {
-namespace {
-
-// Each engine once: a name given twice would run the same engine twice and compare it with itself.
-void check_engine_list(const std::vector<std::string>& engines) {
-  for (std::size_t i = 0; i < engines.size(); ++i) {
-    check_engine_name(engines[i]);
-    if (std::find(engines.begin(), engines.begin() + static_cast<std::ptrdiff_t>(i), engines[i]) !=
-        engines.begin() + static_cast<std::ptrdiff_t>(i)) {
-      throw UsageError("--engines: \"" + engines[i] + "\" is listed twice");
-    }
-  }
-}
-
-}  // namespace
 
 CompareOptions default_compare_options() {
   CompareOptions o;
@@ -50,7 +36,8 @@ void add_compare_command(CLI::App& app, CompareOptions& options) {
 int run_compare_command(const CompareOptions& options) {
   CompareSettings settings;
   if (!options.engines.empty()) settings.engines = options.engines;
-  check_engine_list(settings.engines);
+  for (const std::string& name : settings.engines) check_engine_name(name);
+  check_distinct(settings.engines, "--engines");
   // Before the run (before even loading): a report directory that cannot be written fails now,
   // not after minutes.
   ReportDirectory dir(options.report, {options.scene});

@@ -79,6 +79,7 @@ void add_contacts_command(CLI::App& app, ContactsOptions& options) {
 }
 
 int run_contacts(const ContactsOptions& options) {
+  check_distinct(options.engines, "--engines");
   const ContactQuery query = load_query(options.query);
   std::vector<std::string> names = options.engines;
   if (names.empty()) {
@@ -89,7 +90,6 @@ int run_contacts(const ContactsOptions& options) {
   nlohmann::json engines = nlohmann::json::object();
   std::vector<std::pair<std::string, Manifold>> results;
   for (const std::string& name : names) {
-    if (engines.contains(name)) continue;  // listed twice
     const Manifold m = detect(name, query, options.reduce);
     nlohmann::json contacts = nlohmann::json::array();
     for (const Contact& c : m) contacts.push_back(to_json(c));

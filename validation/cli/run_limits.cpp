@@ -38,6 +38,14 @@ void apply_time_options(Scene& scene, const std::optional<double>& dt, const std
   throw InputError(scene.source, on_dt ? "time.dt" : "time.duration", problem->what + hint);
 }
 
+void check_distinct(const std::vector<std::string>& names, std::string_view flag) {
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (names[i] == names[j]) throw UsageError(std::string(flag) + ": \"" + names[i] + "\" is listed twice");
+    }
+  }
+}
+
 void check_iterations(int iterations, const RunLimits& limits) {
   if (iterations < 1 || iterations > limits.max_iterations) {
     throw UsageError("--iterations: must be in [1, " + std::to_string(limits.max_iterations) + "], got " +

@@ -8,6 +8,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -40,6 +42,10 @@ void add_time_options(CLI::App& cmd, std::optional<double>& dt, std::optional<do
 // against the cap. The error names the flag when one was given, else the scene's field.
 void apply_time_options(Scene& scene, const std::optional<double>& dt, const std::optional<double>& duration,
                         const RunLimits& limits);
+
+// Each name once (`--engines own,own` would run and compare an engine with itself): UsageError
+// naming `flag` and the repeated name.
+void check_distinct(const std::vector<std::string>& names, std::string_view flag);
 
 // Solver iterations within [1, max_iterations].
 void check_iterations(int iterations, const RunLimits& limits);
