@@ -8,7 +8,9 @@
 namespace boxpile {
 
 Material combine_materials(const Material& a, const Material& b) {
-  return {std::sqrt(a.friction * b.friction), std::max(a.restitution, b.restitution)};
+  Material m{std::sqrt(a.friction * b.friction), std::max(a.restitution, b.restitution)};
+  if (a.static_friction || b.static_friction) m.static_friction = std::sqrt(a.static_mu() * b.static_mu());
+  return m;
 }
 
 namespace {

@@ -2,6 +2,8 @@
 // (position, orientation quaternion, linear momentum P, angular momentum L) and derived velocities.
 #pragma once
 
+#include <optional>
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -20,12 +22,18 @@ struct BoxShape {
 
 // Contact material. Combined per pair by the rules in docs/scene-format.md.
 struct Material {
-  double friction = 0.5;     // Coulomb coefficient mu, dimensionless
+  double friction = 0.5;     // Coulomb coefficient mu, dimensionless (the dynamic one)
   double restitution = 0.0;  // Newton coefficient e in [0, 1]
+  // Static Coulomb coefficient mu_s >= mu, read by the penalty method's friction springs; unset:
+  // the same as `friction`. ODE, Bullet and the impulse method have one mu (`friction`).
+  std::optional<double> static_friction;
+
+  double static_mu() const { return static_friction.value_or(friction); }
 };
 
 // Pair materials: friction is the geometric mean sqrt(mu_a mu_b) (zero if either is
-// frictionless), restitution the larger of the two (docs/scene-format.md).
+// frictionless), restitution the larger of the two, static friction the geometric mean of the
+// static coefficients (set when either material sets it) (docs/scene-format.md).
 Material combine_materials(const Material& a, const Material& b);
 
 // Mass properties of a set of boxes of uniform density, about their common centre of mass.

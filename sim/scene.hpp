@@ -42,8 +42,18 @@ struct CollisionSettings {
 enum class ContactSolver { Impulse, Penalty };
 enum class PositionIntegrator { ExplicitEuler, SemiImplicitEuler };
 
+// The penalty method's settings (docs/penalty.md). Each one left unset is derived from the
+// scene when the world is built (sim/solver/penalty_parameters.hpp).
+struct PenaltySettings {
+  std::optional<double> stiffness;           // N/m per contact point, normal spring
+  std::optional<double> damping;             // N s/m per contact point, normal and tangential damper
+  std::optional<double> friction_stiffness;  // N/m per contact point, the friction spring
+  std::optional<int> substeps;               // penalty steps per scene step, >= 1
+};
+
 struct SolverSettings {
   ContactSolver method = ContactSolver::Impulse;
+  PenaltySettings penalty;  // read only by the penalty method
   int collision_passes = 5;       // GBF collision loop passes (5-10)
   int contact_passes = 10;        // GBF contact loop passes, restitution ramped -0.9 -> 0 (10-20)
   bool shock_propagation = true;  // GBF shock propagation after the contact loop

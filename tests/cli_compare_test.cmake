@@ -46,7 +46,7 @@ endif()
 
 # --- bad input: exit 2, a message, nothing written ---
 run_boxpile(2 compare "${stack}" --engines own,physx --report "${WORK}/bad_engine")
-expect_contains("${err}" "unknown engine \"physx\"; available: own, ode, bullet")
+expect_contains("${err}" "unknown engine \"physx\"; available: own, own-impulse, own-penalty, ode, bullet")
 expect_absent("${WORK}/bad_engine")
 
 run_boxpile(2 compare "${WORK}/missing.json" --report "${WORK}/bad_scene")

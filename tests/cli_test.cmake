@@ -82,3 +82,38 @@ run(bad_extent 2 "bad_extent.json: a.half_extents[1]" contacts "${WORK}/bad_exte
 file(WRITE "${WORK}/bad_syntax.json" "{\"a\": {\"half_extents\": [0.5, 0.5 0.5]}}\n")
 run(bad_syntax 2 "line 1" contacts "${WORK}/bad_syntax.json")
 run(missing_file 2 "no_such_query.json" contacts "${WORK}/no_such_query.json")
+
+# The contact methods: a key of one method under the other, an unknown method, static friction
+# under the impulse method and a dt past the penalty method's stability bound: exit 2 naming the key.
+function(scene_with name solver material dt)
+  file(WRITE "${WORK}/${name}.json" "{\"name\": \"${name}\", \"ground\": {}, \"material\": ${material},
+ \"bodies\": [{\"name\": \"b\", \"mass\": 1, \"half_extents\": [0.5, 0.5, 0.5], \"position\": [0, 0, 0.5]}],
+ \"solver\": ${solver}, \"time\": {\"dt\": ${dt}, \"duration\": 0.1}}\n")
+endfunction()
+scene_with(penalty_key_under_impulse "{\"method\": \"impulse\", \"stiffness\": 1000}" "{}" 0.004)
+run(penalty_key_under_impulse 2 "penalty_key_under_impulse.json: solver.stiffness: belongs to the penalty method"
+    run "${WORK}/penalty_key_under_impulse.json" --engine own)
+scene_with(impulse_key_under_penalty "{\"method\": \"penalty\", \"contact_passes\": 10}" "{}" 0.004)
+run(impulse_key_under_penalty 2 "impulse_key_under_penalty.json: solver.contact_passes: belongs to the impulse method"
+    run "${WORK}/impulse_key_under_penalty.json" --engine own)
+scene_with(unknown_method "{\"method\": \"springs\"}" "{}" 0.004)
+run(unknown_method 2 "unknown_method.json: solver.method" run "${WORK}/unknown_method.json" --engine own)
+scene_with(static_under_impulse "{}" "{\"friction\": 0.2, \"static_friction\": 0.5}" 0.004)
+run(static_under_impulse 2 "static_under_impulse.json: material.static_friction: belongs to the penalty method"
+    run "${WORK}/static_under_impulse.json" --engine own)
+# k = 1e9 N/m on a 1 kg box: the bound is 2 (sqrt(2) - 1) / sqrt(4e9) = 1.3e-5 s, dt 0.1 s would
+# need 96 000 derived substeps (0.08 of the bound each).
+scene_with(past_bound "{\"method\": \"penalty\", \"stiffness\": 1e9}" "{}" 0.1)
+run(past_bound 2 "past_bound.json: time.dt: dt 0.1 s breaks the penalty method's stability bound"
+    run "${WORK}/past_bound.json" --engine own)
+# The same with its own substeps is taken as it is.
+scene_with(past_bound_substeps "{\"method\": \"penalty\", \"stiffness\": 1e9, \"substeps\": 2}" "{}" 0.1)
+run(past_bound_substeps 0 "" run "${WORK}/past_bound_substeps.json" --engine own --duration 0)
+# own-penalty forces the method on an impulse scene, and says so in its frames.
+run(own_penalty 0 "" run "${FIXTURES}/scenes/stack_5.json" --engine own-penalty --duration 0.1 --out "${WORK}/penalty.json")
+file(READ "${WORK}/penalty.json" penalty_run)
+string(JSON method GET "${penalty_run}" frames 1 solver method)
+string(JSON engine GET "${penalty_run}" engine)
+if(NOT method STREQUAL "penalty" OR NOT engine STREQUAL "own-penalty")
+  message(SEND_ERROR "own-penalty: method ${method}, engine ${engine}")
+endif()

@@ -26,6 +26,8 @@ constexpr WireTolerance kTolerances[] = {
     // Ours: velocity across the wire cancelled, then the anchor projected back onto it after
     // every position update (sim/solver/wire.cpp): only rounding remains (measured 3e-15 m).
     {"own", 1e-6, 1e-6},
+    // The penalty method keeps the same wire (impulse and projection in every substep).
+    {"own-penalty", 1e-6, 1e-6},
     // ODE: slider and ball joints through a carriage of 1% of the body's mass, corrected by ERP
     // 0.2; QuickStep's 20 passes converge slowly for so light a carriage, and the anchor sags
     // 2.1 mm under the bone's weight (measured, bone_hits_pile and the cube below alike). The

@@ -662,11 +662,13 @@ constexpr std::array<const char*, 2> kReferenceEngines = {"ode", "bullet"};
 TEST_CASE("the engine factory builds our engine, ODE and Bullet and refuses other names", "[reference]") {
   const Scene scene = empty_scene(Effects{}, true);
   CHECK(make_engine("own", scene)->name() == "own");
+  CHECK(make_engine("own-impulse", scene)->name() == "own-impulse");
+  CHECK(make_engine("own-penalty", scene)->name() == "own-penalty");
   CHECK(make_engine("ode", scene)->name() == "ode");
   CHECK(make_engine("bullet", scene)->name() == "bullet");
   CHECK_THROWS_AS(make_engine("odee", scene), UnknownEngine);
   CHECK_THROWS_WITH(make_engine("odee", scene), Catch::Contains("unknown engine \"odee\"") &&
-                                                    Catch::Contains("available: own, ode, bullet"));
+                                                    Catch::Contains("available: own, own-impulse, own-penalty, ode, bullet"));
 }
 
 TEST_CASE("free fall follows the semi-implicit Euler parabola, only with the gravity effect", "[reference]") {

@@ -106,7 +106,7 @@ TEST_CASE("a full scene loads with every value", "[scene]") {
                   "orientation": [0, 0, 0, 3]}],
        "position": [10, 0, 5]}
     ],
-    "solver": {"method": "penalty", "collision_passes": 7, "contact_passes": 15.0,
+    "solver": {"method": "impulse", "collision_passes": 7, "contact_passes": 15.0,
                "shock_propagation": false, "integrator": "semi_implicit_euler"},
     "collision": {"reduce_to_four": true, "margin": 0.01},
     "time": {"dt": 0.002, "duration": 2.5},
@@ -156,7 +156,7 @@ TEST_CASE("a full scene loads with every value", "[scene]") {
   CHECK(l.boxes[1].offset == Vec3(0.75, 0, 1));
   CHECK(std::abs(l.boxes[1].orientation.z() - 1.0) < kTight);  // [0, 0, 0, 3] normalised
 
-  CHECK(s.solver.method == ContactSolver::Penalty);
+  CHECK(s.solver.method == ContactSolver::Impulse);
   CHECK(s.solver.collision_passes == 7);
   CHECK(s.solver.contact_passes == 15);
   CHECK_FALSE(s.solver.shock_propagation);
@@ -740,4 +740,49 @@ TEST_CASE("solver settings of our engine load and are checked", "[scene]") {
                     Catch::Contains("solver.shock_passes") && Catch::Contains("[1, 64]"));
   CHECK_THROWS_WITH(parse_scene(base + R"({"contact_margin": -1}})", "solver.json"),
                     Catch::Contains("solver.contact_margin"));
+}
+
+TEST_CASE("the penalty method's keys load, and each method's keys are errors under the other", "[scene]") {
+  const Scene s = parse_scene(R"({
+    "name": "springs", "ground": {},
+    "material": {"friction": 0.2, "static_friction": 0.5},
+    "bodies": [{"name": "b", "mass": 1, "half_extents": [0.5, 0.5, 0.5], "position": [0, 0, 0.5],
+                "material": {"friction": 0.3}}],
+    "solver": {"method": "penalty", "stiffness": 2e4, "damping": 50, "friction_stiffness": 1e4,
+               "substeps": 8, "contact_margin": 0.002},
+    "time": {"dt": 0.004, "duration": 1}
+  })", kSource);
+  CHECK(s.solver.method == ContactSolver::Penalty);
+  CHECK(s.solver.penalty.stiffness == 2e4);
+  CHECK(s.solver.penalty.damping == 50.0);
+  CHECK(s.solver.penalty.friction_stiffness == 1e4);
+  CHECK(s.solver.penalty.substeps == 8);
+  CHECK(s.solver.contact_margin == 0.002);  // shared by both methods
+  CHECK(s.material.static_mu() == 0.5);
+  CHECK(s.material.friction == 0.2);
+  // A body giving its own friction gets mu_s = its friction, not the scene's static one.
+  CHECK(s.bodies[0].material->static_mu() == 0.3);
+
+  auto error_of = [](const std::string& text) {
+    try {
+      parse_scene(text, kSource);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string body = R"("bodies": [{"name": "b", "mass": 1, "half_extents": [0.5, 0.5, 0.5], "position": [0, 0, 0.5]}],
+                              "time": {"dt": 0.004, "duration": 1}})";
+  CHECK_THAT(error_of(R"({"name": "x", "solver": {"stiffness": 1000}, )" + body),
+             Catch::Contains("solver.stiffness") && Catch::Contains("belongs to the penalty method"));
+  CHECK_THAT(error_of(R"({"name": "x", "solver": {"method": "penalty", "shock_passes": 3}, )" + body),
+             Catch::Contains("solver.shock_passes") && Catch::Contains("belongs to the impulse method"));
+  CHECK_THAT(error_of(R"({"name": "x", "material": {"static_friction": 0.9}, )" + body),
+             Catch::Contains("material.static_friction") && Catch::Contains("belongs to the penalty method"));
+  CHECK_THAT(error_of(R"({"name": "x", "material": {"friction": 0.5, "static_friction": 0.4}, "solver": {"method": "penalty"}, )" + body),
+             Catch::Contains("material.static_friction") && Catch::Contains("at least the dynamic one"));
+  CHECK_THAT(error_of(R"({"name": "x", "material": {"restitution": 0.5}, "effects": ["gravity", "restitution"], "solver": {"method": "penalty", "damping": 10}, )" + body),
+             Catch::Contains("solver.damping") && Catch::Contains("restitution"));
+  CHECK_THAT(error_of(R"({"name": "x", "solver": {"method": "penalty", "substeps": 0}, )" + body),
+             Catch::Contains("solver.substeps"));
 }

@@ -32,9 +32,20 @@ std::unique_ptr<Engine> build_own(const Scene& scene, const ReferenceSettings&) 
   return std::make_unique<World>(scene);
 }
 
+// Our simulator with its contact method forced, whatever the scene's solver.method says. The
+// settings of the other method are then not read (docs/penalty.md, "Engines").
+template <ContactSolver method>
+std::unique_ptr<Engine> build_own_with(const Scene& scene, const ReferenceSettings&) {
+  Scene forced = scene;
+  forced.solver.method = method;
+  return std::make_unique<World>(forced, method == ContactSolver::Impulse ? "own-impulse" : "own-penalty");
+}
+
 // Adding an engine is one line here.
-constexpr std::array<EngineEntry, 3> kEngines = {{
+constexpr std::array<EngineEntry, 5> kEngines = {{
     {"own", &build_own, ""},
+    {"own-impulse", &build_own_with<ContactSolver::Impulse>, ""},
+    {"own-penalty", &build_own_with<ContactSolver::Penalty>, ""},
     {"ode", &build<OdeEngine>, ""},
     {"bullet", &build<BulletEngine>, ""},
 }};

@@ -15,6 +15,7 @@
 #include "sim/collision/broadphase.hpp"
 #include "sim/collision/collide.hpp"
 #include "sim/io/json_input.hpp"
+#include "sim/solver/penalty_parameters.hpp"
 #include "sim/time_steps.hpp"
 
 namespace boxpile {
@@ -43,6 +44,18 @@ constexpr std::array<bool Effects::*, 5> kEffectFlags = {
 constexpr std::array<std::string_view, 2> kSolverMethods = {"impulse", "penalty"};
 constexpr std::array<ContactSolver, 2> kSolverMethodValues = {ContactSolver::Impulse,
                                                               ContactSolver::Penalty};
+
+// The solver keys each method reads; under the other method they are errors (a setting that is
+// accepted must do something). `contact_margin` shapes the contact set, which both methods share.
+constexpr std::array<std::string_view, 8> kImpulseKeys = {
+    "collision_passes", "contact_passes",       "shock_propagation", "shock_passes",
+    "integrator",       "penetration_recovery", "penetration_slop",  "recovery_passes"};
+constexpr std::array<std::string_view, 4> kPenaltyKeys = {"stiffness", "damping", "friction_stiffness",
+                                                          "substeps"};
+
+// The most penalty steps one scene step may be split into: beyond it a run of seconds takes
+// hours, and a step that short is better asked for with a smaller dt.
+constexpr int kMaxPenaltySubsteps = 100000;
 
 constexpr std::array<std::string_view, 2> kIntegrators = {"explicit_euler", "semi_implicit_euler"};
 constexpr std::array<PositionIntegrator, 2> kIntegratorValues = {
@@ -78,11 +91,23 @@ int read_pass_count(const JsonNode& node) {
 }
 
 // A material; keys left out keep the values of `fallback` (the scene's, for a body).
+// A material that sets "friction" but not "static_friction" has mu_s = mu (it does not inherit the
+// fallback's static coefficient).
 Material read_material(const JsonNode& node, const Material& fallback) {
-  node.expect_object({"friction", "restitution"});
+  node.expect_object({"friction", "restitution", "static_friction"});
   Material m = fallback;
-  if (const auto mu = node.find("friction")) m.friction = json_input::read_in_range(*mu, 0.0, limits::kMaxFriction, "");
+  if (const auto mu = node.find("friction")) {
+    m.friction = json_input::read_in_range(*mu, 0.0, limits::kMaxFriction, "");
+    m.static_friction.reset();
+  }
   if (const auto e = node.find("restitution")) m.restitution = read_unit_interval(*e);
+  if (const auto mu_s = node.find("static_friction")) {
+    m.static_friction = json_input::read_in_range(*mu_s, 0.0, limits::kMaxFriction, "");
+    if (*m.static_friction < m.friction) {
+      mu_s->fail("the static coefficient must be at least the dynamic one (\"friction\", " +
+                 json_input::format_number(m.friction) + "), got " + json_input::format_number(*m.static_friction));
+    }
+  }
   return m;
 }
 
@@ -108,14 +133,44 @@ Damping read_damping(const JsonNode& node) {
   return d;
 }
 
+// Keys of one method given while the scene runs the other: named, with the method they belong to.
+template <std::size_t N>
+void refuse_keys_of(const JsonNode& node, const std::array<std::string_view, N>& keys,
+                    std::string_view owner, std::string_view method) {
+  for (std::string_view key : keys) {
+    if (const auto k = node.find(key)) {
+      k->fail("belongs to the " + std::string(owner) + " method, but \"method\" is " + in_quotes(method) +
+              ": remove it or set \"method\": " + in_quotes(owner));
+    }
+  }
+}
+
+PenaltySettings read_penalty(const JsonNode& node) {
+  PenaltySettings p;
+  if (const auto k = node.find("stiffness")) p.stiffness = json_input::read_positive(*k);
+  if (const auto c = node.find("damping")) p.damping = json_input::read_non_negative(*c);
+  if (const auto k = node.find("friction_stiffness")) p.friction_stiffness = json_input::read_positive(*k);
+  if (const auto n = node.find("substeps")) {
+    p.substeps = n->integer();
+    if (*p.substeps < 1 || *p.substeps > kMaxPenaltySubsteps) {
+      n->fail("must be in [1, " + std::to_string(kMaxPenaltySubsteps) + "], got " + std::to_string(*p.substeps));
+    }
+  }
+  return p;
+}
+
 SolverSettings read_solver(const JsonNode& node) {
   node.expect_object({"method", "collision_passes", "contact_passes", "shock_propagation",
                       "shock_passes", "integrator", "contact_margin", "penetration_recovery",
-                      "penetration_slop", "recovery_passes"});
+                      "penetration_slop", "recovery_passes", "stiffness", "damping",
+                      "friction_stiffness", "substeps"});
   SolverSettings s;
   if (const auto m = node.find("method")) {
     s.method = kSolverMethodValues[m->choice(kSolverMethods, "solver method")];
   }
+  if (s.method == ContactSolver::Impulse) refuse_keys_of(node, kPenaltyKeys, "penalty", "impulse");
+  if (s.method == ContactSolver::Penalty) refuse_keys_of(node, kImpulseKeys, "impulse", "penalty");
+  s.penalty = read_penalty(node);
   if (const auto n = node.find("collision_passes")) s.collision_passes = read_pass_count(*n);
   if (const auto n = node.find("contact_passes")) s.contact_passes = read_pass_count(*n);
   s.shock_propagation = node.boolean_or("shock_propagation", s.shock_propagation);
@@ -270,6 +325,40 @@ std::vector<BodyDesc> read_bodies(const JsonNode& node, const Material& scene_ma
   return bodies;
 }
 
+// Static friction is read by the penalty method's friction springs alone.
+void refuse_static_friction(const JsonNode& root) {
+  auto refuse = [](const std::optional<JsonNode>& material) {
+    if (!material) return;
+    if (const auto mu_s = material->find("static_friction")) {
+      mu_s->fail("belongs to the penalty method (the impulse method has one coefficient, \"friction\"), "
+                 "but solver.method is \"impulse\": remove it or set solver.method to \"penalty\"");
+    }
+  };
+  refuse(root.find("material"));
+  const JsonNode bodies = root.at("bodies");
+  for (std::size_t i = 0; i < bodies.array_size(); ++i) refuse(bodies.element(i).find("material"));
+}
+
+// A damping set for every pair would leave the materials' restitution unread; and a scene whose
+// dt breaks the stability bound, with substeps left to derive, is refused naming the bound.
+void check_penalty_settings(const JsonNode& root, const Scene& s) {
+  if (s.solver.penalty.damping && s.effects.restitution) {
+    double e = s.material.restitution;
+    for (const BodyDesc& b : s.bodies)
+      if (b.material) e = std::max(e, b.material->restitution);
+    if (e > 0.0) {
+      root.at("solver").at("damping").fail(
+          "sets every contact's damping, so the materials' restitution (up to " + json_input::format_number(e) +
+          ") would be ignored: the penalty method derives each pair's damping from its restitution when "
+          "\"damping\" is left out; remove one of them");
+    }
+  }
+  const PenaltyParameters p = derive_penalty_parameters(s);
+  if (const std::string problem = penalty_parameters_problem(s, p); !problem.empty()) {
+    root.at("time").at("dt").fail(problem);
+  }
+}
+
 Scene read_scene(const JsonNode& root, const LoadLimits& caps) {
   root.expect_object({"name", "note", "gravity", "ground", "material", "effects", "damping",
                       "bodies", "solver", "collision", "time", "allow_initial_overlap"});
@@ -286,6 +375,8 @@ Scene read_scene(const JsonNode& root, const LoadLimits& caps) {
   if (const auto c = root.find("collision")) s.collision = read_collision(*c);
   s.time = read_time(root.at("time"));
   s.allow_initial_overlap = root.boolean_or("allow_initial_overlap", false);
+  if (s.solver.method == ContactSolver::Impulse) refuse_static_friction(root);
+  if (s.solver.method == ContactSolver::Penalty) check_penalty_settings(root, s);
   return s;
 }
 

@@ -1,16 +1,24 @@
 #include "sim/solver/contact_method.hpp"
 
+#include <stdexcept>
+
 #include "sim/solver/impulse_method.hpp"
+#include "sim/solver/penalty_method.hpp"
 
 namespace boxpile {
 
 std::unique_ptr<ContactMethod> make_contact_method(const Scene& scene, const std::vector<RigidBody>& bodies) {
   switch (scene.solver.method) {
     case ContactSolver::Impulse:
-    case ContactSolver::Penalty:  // the penalty method is not built yet: it runs the impulse method
       return std::make_unique<ImpulseMethod>(bodies.size());
+    case ContactSolver::Penalty: {
+      const PenaltyParameters p = derive_penalty_parameters(scene);
+      if (const std::string problem = penalty_parameters_problem(scene, p); !problem.empty())
+        throw std::invalid_argument(scene.source + ": solver: " + problem);
+      return std::make_unique<PenaltyMethod>(p, bodies.size());
+    }
   }
-  return nullptr;
+  throw std::invalid_argument("unknown solver method");
 }
 
 }  // namespace boxpile

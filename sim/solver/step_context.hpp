@@ -23,7 +23,7 @@ inline constexpr int kMaxSolverPasses = 64;
 struct PenaltyCounters {
   std::uint64_t spring_evaluations = 0;  // contact points that carried a spring force
   std::uint64_t anchors_created = 0;     // contacts that began (a new friction anchor)
-  std::uint64_t anchors_slipped = 0;     // anchors moved because the spring left the static cone
+  std::uint64_t sliding_points = 0;      // points whose anchor was dragged (sliding friction)
 };
 
 // How often each stage ran and how much work it did: a scene without an effect never pays for it.

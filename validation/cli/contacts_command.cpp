@@ -17,7 +17,14 @@ namespace {
 // The detectors `contacts` can show. "bullet_multipoint" is Bullet with
 // setPlaneConvexMultipointIterations(3, 3): it differs from "bullet" on box-plane queries only.
 constexpr std::string_view kOwn = "own";
-const std::vector<std::string> kDetectors = {"own", "ode", "bullet", "bullet_multipoint"};
+// own-impulse and own-penalty name our engine with a forced contact method; the contact set is the
+// same for both, so they are "own" here.
+const std::vector<std::string> kDetectors = {"own", "own-impulse", "own-penalty", "ode", "bullet",
+                                             "bullet_multipoint"};
+
+std::string detector_of(const std::string& name) {
+  return name == "own-impulse" || name == "own-penalty" ? std::string(kOwn) : name;
+}
 
 Manifold detect(std::string_view name, const ContactQuery& query, bool reduce) {
   const OrientedBox a = OrientedBox::from(query.a.pose, query.a.half_extents);
@@ -71,7 +78,8 @@ void add_contacts_command(CLI::App& app, ContactsOptions& options) {
       ->required();
   cmd->add_flag("--reduce", options.reduce, "Reduce our box-box manifold to at most 4 points");
   cmd->add_option("--engines", options.engines,
-                  "Comma-separated detectors to show: own, ode, bullet, bullet_multipoint (default: own, "
+                  "Comma-separated detectors to show: own (own-impulse and own-penalty are the same "
+                  "detector), ode, bullet, bullet_multipoint (default: own, "
                   "ode, bullet, and bullet_multipoint for a box-plane query). \"diff\" compares each "
                   "reference with own when own is shown.")
       ->delimiter(',')
@@ -89,7 +97,9 @@ int run_contacts(const ContactsOptions& options) {
 
   nlohmann::json engines = nlohmann::json::object();
   std::vector<std::pair<std::string, Manifold>> results;
-  for (const std::string& name : names) {
+  for (const std::string& listed : names) {
+    const std::string name = detector_of(listed);
+    if (engines.contains(name)) continue;  // listed twice
     const Manifold m = detect(name, query, options.reduce);
     nlohmann::json contacts = nlohmann::json::array();
     for (const Contact& c : m) contacts.push_back(to_json(c));

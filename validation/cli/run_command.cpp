@@ -29,14 +29,24 @@ nlohmann::json metrics_json(const FrameMetrics& m) {
           {"levitation", m.levitation}};
 }
 
-// Our solver's statistics of its last step: passes used and the residual (largest approaching
-// normal velocity, m/s) after each pass, for the convergence plots.
+// Our solver's statistics of its last step. Impulse method: passes used and the residual
+// (largest approaching normal velocity, m/s) after each pass, for the convergence plots. Penalty
+// method: its substeps and the work of its springs and anchors so far.
 nlohmann::json solver_json(const World& world) {
+  if (world.scene().solver.method == ContactSolver::Penalty) {
+    const PenaltyCounters& p = world.counters().penalty;
+    return {{"method", "penalty"},
+            {"substeps", world.counters().penalty_substeps},
+            {"spring_evaluations", p.spring_evaluations},
+            {"anchors_created", p.anchors_created},
+            {"sliding_points", p.sliding_points}};
+  }
   const StepStats& st = world.last_step_stats();
   nlohmann::json collision = nlohmann::json::array(), contact = nlohmann::json::array();
   for (int k = 0; k < st.collision_passes_used; ++k) collision.push_back(st.collision_residual[k]);
   for (int k = 0; k < st.contact_passes_used; ++k) contact.push_back(st.contact_residual[k]);
-  return {{"collision_passes", st.collision_passes_used},
+  return {{"method", "impulse"},
+          {"collision_passes", st.collision_passes_used},
           {"collision_residuals", collision},
           {"contact_residuals", contact},
           {"shock_levels", st.shock_levels},
@@ -88,7 +98,7 @@ void print_summary(const Scene& scene, std::string_view engine, long steps, doub
 void add_run_command(CLI::App& app, RunOptions& options) {
   CLI::App* cmd = app.add_subcommand("run", "Step a scene in one engine and record the bodies' states");
   cmd->add_option("scene", options.scene, "Scene file (JSON, docs/scene-format.md)")->required();
-  cmd->add_option("--engine", options.engine, "Engine: own, ode or bullet")
+  cmd->add_option("--engine", options.engine, "Engine: own (the scene's solver.method), own-impulse, own-penalty, ode or bullet")
       ->required();
   add_time_options(*cmd, options.dt, options.duration);
   cmd->add_option("--every", options.every, "Record a frame every K steps (and at the start)")
