@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "sim/io/scene_loader.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
 
 namespace boxpile {
 namespace {

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <string>
 
-#include "sim/io/scene_loader.hpp"
-#include "sim/time_steps.hpp"
-#include "sim/world.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/time_steps.hpp"
+#include "boxpile/sim/world.hpp"
 
 namespace boxpile {
 namespace {

@@ -1,34 +1,55 @@
-// Time per step of our engine and the reference engines on the shared scenes: stack_5 and
-// stack_10 (unit cubes) and pile_100 (a hundred boxes falling into a pile). One benchmark iteration builds the engine
-// (not timed) and steps it through the scene's whole duration (5 s at dt 1/240, 1200 steps), so
-// every iteration times the same motion: the falling phase and the resting phase alike.
+// Time per step of our engine and the reference engines (ODE QuickStep, Bullet), each at its
+// defaults, on the shared scenes and on generated ones:
+//   step_scene    stack_5, stack_10 and pile_100 from fixtures/scenes, through their whole
+//                 duration (5 s at dt 1/240, 1,200 steps): the falling and the resting phase.
+//   step_hard     the hard catalogue's square pyramids of base 6 and 10 and the Jenga tower
+//                 (generated_scenes.hpp), through the catalogue's durations (3 s, 1.5 s, 5 s).
+//   step_scaling  square pyramids of base 4, 6, 8, 10, 14 and 20 (30 to 2,870 boxes), the first
+//                 60 steps (0.25 s): cost against the number of contacts, for the log-log plot
+//                 of docs/performance.md (scripts/plot-scaling).
+// One benchmark iteration builds the engine (not timed) and steps it, so every iteration times
+// the same motion. Counters: per_step (s), and contacts, the engine's contact points after the
+// last step (each engine counts its own).
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
-#include "reference/settings.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "sim/time_steps.hpp"
-#include "validation/engine_factory.hpp"
+#include "generated_scenes.hpp"
+#include "boxpile/reference/settings.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/time_steps.hpp"
+#include "boxpile/validation/engine_factory.hpp"
 
 namespace boxpile {
 namespace {
 
-void step_scene(benchmark::State& state, const std::string& scene_name, const std::string& engine,
-                const ReferenceSettings& settings) {
-  const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + scene_name + ".json");
-  const long steps = step_count(scene.time);
+void time_steps(benchmark::State& state, const Scene& scene, const std::string& engine,
+                const ReferenceSettings& settings, long steps) {
+  std::vector<BodyContact> contacts;
   for (auto _ : state) {
     state.PauseTiming();
     const auto world = make_engine(engine, scene, settings);
     state.ResumeTiming();
     for (long k = 0; k < steps; ++k) world->step();
+    state.PauseTiming();
+    world->contacts(contacts);
+    state.ResumeTiming();
   }
   // Seconds per step: the inverse of steps per second.
   state.counters["per_step"] = benchmark::Counter(static_cast<double>(steps),
                                                   benchmark::Counter::kIsIterationInvariantRate |
                                                       benchmark::Counter::kInvert);
+  state.counters["contacts"] = static_cast<double>(contacts.size());
+  state.counters["bodies"] = static_cast<double>(scene.bodies.size());
+}
+
+void step_scene(benchmark::State& state, const std::string& scene_name, const std::string& engine,
+                const ReferenceSettings& settings) {
+  const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + scene_name + ".json");
+  time_steps(state, scene, engine, settings, step_count(scene.time));
 }
 
 ReferenceSettings ode_world_step() {
@@ -60,6 +81,48 @@ BENCHMARK_CAPTURE(step_scene, pile_100/ode_quickstep, "pile_100", "ode", Referen
 BENCHMARK_CAPTURE(step_scene, pile_100/bullet, "pile_100", "bullet", ReferenceSettings{})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
+
+constexpr std::array<const char*, 3> kEngines = {"own", "ode", "bullet"};
+
+// The catalogue's durations: long enough for each scene to settle.
+constexpr double kPyramid6Duration = 3.0;   // s
+constexpr double kPyramid10Duration = 1.5;  // s
+constexpr double kJengaDuration = 5.0;      // s
+
+// The scaling sweep: every size over the same first steps, so that sizes compare.
+constexpr std::array<int, 6> kScalingBases = {4, 6, 8, 10, 14, 20};
+constexpr long kScalingSteps = 60;
+
+void step_generated(benchmark::State& state, const Scene& scene, const std::string& engine, long steps) {
+  time_steps(state, scene, engine, ReferenceSettings{}, steps);
+}
+
+long whole(const Scene& s) { return step_count(s.time); }
+
+// Registered at start-up: the generated scenes are built once, here.
+const bool registered = [] {
+  const std::vector<std::pair<std::string, Scene>> hard = {
+      {"pyramid_6", bench::square_pyramid(6, kPyramid6Duration)},
+      {"pyramid_10", bench::square_pyramid(10, kPyramid10Duration)},
+      {"jenga", bench::jenga_tower(kJengaDuration)},
+  };
+  for (const auto& [name, scene] : hard)
+    for (const char* engine : kEngines)
+      benchmark::RegisterBenchmark(("step_hard/" + name + "/" + engine).c_str(), step_generated, scene,
+                                   std::string(engine), whole(scene))
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
+  for (int base : kScalingBases) {
+    const Scene scene = bench::square_pyramid(base, kScalingSteps * TimeSettings{}.dt);
+    for (const char* engine : kEngines)
+      benchmark::RegisterBenchmark(("step_scaling/pyramid_" + std::to_string(bench::square_pyramid_boxes(base)) +
+                                    "/" + engine).c_str(),
+                                   step_generated, scene, std::string(engine), kScalingSteps)
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
+  }
+  return true;
+}();
 
 }  // namespace
 }  // namespace boxpile

@@ -9,12 +9,12 @@
 #include <cstdlib>
 #include <string>
 
-#include "reference/ode_engine.hpp"
-#include "reference/reference_contacts.hpp"
-#include "sim/collision/box.hpp"
-#include "sim/collision/box_box.hpp"
-#include "sim/collision/box_plane.hpp"
-#include "sim/io/query_loader.hpp"
+#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/reference/reference_contacts.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
+#include "boxpile/sim/io/query_loader.hpp"
 
 namespace {
 

@@ -8,11 +8,11 @@
 #include <cstdio>
 #include <string>
 
-#include "reference/bullet_engine.hpp"
-#include "reference/ode_engine.hpp"
-#include "sim/finite.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "sim/world.hpp"
+#include "boxpile/reference/bullet_engine.hpp"
+#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/sim/finite.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/world.hpp"
 
 namespace {
 

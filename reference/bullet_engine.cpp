@@ -1,4 +1,4 @@
-#include "reference/bullet_engine.hpp"
+#include "boxpile/reference/bullet_engine.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -8,9 +8,9 @@
 #include <BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h>
 #include <Eigen/Eigenvalues>
 
-#include "reference/bullet_support.hpp"
-#include "reference/convention.hpp"
-#include "sim/world.hpp"
+#include "boxpile/reference/bullet_support.hpp"
+#include "boxpile/reference/convention.hpp"
+#include "boxpile/sim/world.hpp"
 
 namespace boxpile {
 

@@ -4,9 +4,9 @@
 
 #include <memory>
 
-#include "reference/settings.hpp"
-#include "sim/engine.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/reference/settings.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

@@ -5,8 +5,8 @@
 
 #include <btBulletCollisionCommon.h>
 
-#include "sim/collision/contact.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile::reference_detail {
 

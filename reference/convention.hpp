@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "sim/collision/box.hpp"
-#include "sim/collision/contact.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/contact.hpp"
 
 namespace boxpile::reference_detail {
 

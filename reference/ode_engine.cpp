@@ -1,10 +1,10 @@
-#include "reference/ode_engine.hpp"
+#include "boxpile/reference/ode_engine.hpp"
 
 #include <cmath>
 #include <utility>
 
-#include "reference/ode_support.hpp"
-#include "sim/world.hpp"
+#include "boxpile/reference/ode_support.hpp"
+#include "boxpile/sim/world.hpp"
 
 namespace boxpile {
 
@@ -360,5 +360,7 @@ void OdeEngine::body_states(std::vector<BodyState>& out) const {
 void OdeEngine::contacts(std::vector<BodyContact>& out) const { out = world_->contacts; }
 
 std::uint64_t OdeEngine::messages() const { return ode_messages().count - world_->messages_at_start; }
+
+std::string OdeEngine::last_message() const { return messages() > 0 ? ode_messages().last : std::string(); }
 
 }  // namespace boxpile

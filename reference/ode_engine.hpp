@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "reference/settings.hpp"
-#include "sim/engine.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/reference/settings.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 
@@ -46,7 +46,8 @@ class OdeEngine final : public Engine {
   void contacts(std::vector<BodyContact>& out) const override;
 
   // ODE messages caught since this engine was built.
-  std::uint64_t messages() const;
+  std::uint64_t messages() const override;
+  std::string last_message() const override;
 
  private:
   struct World;

@@ -1,11 +1,11 @@
-#include "reference/ode_support.hpp"
+#include "boxpile/reference/ode_support.hpp"
 
 #include <cstdarg>
 #include <cstdio>
 #include <mutex>
 
-#include "reference/convention.hpp"
-#include "reference/ode_engine.hpp"
+#include "boxpile/reference/convention.hpp"
+#include "boxpile/reference/ode_engine.hpp"
 
 namespace boxpile {
 namespace {

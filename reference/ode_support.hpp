@@ -5,9 +5,9 @@
 
 #include <ode/ode.h>
 
-#include "sim/collision/box.hpp"
-#include "sim/collision/contact.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile::reference_detail {
 

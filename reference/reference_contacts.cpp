@@ -1,12 +1,12 @@
-#include "reference/reference_contacts.hpp"
+#include "boxpile/reference/reference_contacts.hpp"
 
 #include <map>
 #include <memory>
 #include <utility>
 
-#include "reference/bullet_support.hpp"
-#include "reference/convention.hpp"
-#include "reference/ode_support.hpp"
+#include "boxpile/reference/bullet_support.hpp"
+#include "boxpile/reference/convention.hpp"
+#include "boxpile/reference/ode_support.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "sim/body.hpp"
+#include "boxpile/sim/body.hpp"
 
 #include <algorithm>
 #include <cassert>

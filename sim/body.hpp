@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/math.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 

@@ -3,14 +3,19 @@
 // adapters in reference/ implement it.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "sim/collision/collide.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/collision/collide.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
+
+struct CollisionEvent;  // sim/solver/step_context.hpp
+struct StepStats;
+struct WorldCounters;
 
 // A body's state as every engine reports it. `position` and `orientation` are the scene file's
 // body frame (not the centre of mass of a compound); `velocity` is the centre of mass's linear
@@ -39,6 +44,20 @@ class Engine {
   // from body_b toward body_a, depth > 0 when penetrating); body indices in scene order, kGround
   // for the ground.
   virtual void contacts(std::vector<BodyContact>& out) const = 0;
+
+  // --- diagnostics: what an engine can tell beside its states (by default, nothing) ---------
+  // The collision events its solver recorded so far (ours); nullptr when it records none.
+  virtual const std::vector<CollisionEvent>* collision_events() const { return nullptr; }
+  // Its solver's statistics of the last step, and its counters so far (ours); nullptr when it
+  // keeps none.
+  virtual const StepStats* solver_stats() const { return nullptr; }
+  virtual const WorldCounters* solver_counters() const { return nullptr; }
+  // The contact method of its solver ("impulse" or "penalty" for ours); empty when it has no
+  // choice of method.
+  virtual std::string_view contact_method() const { return {}; }
+  // Messages its library reported since the engine was built (ODE's), and the last of them.
+  virtual std::uint64_t messages() const { return 0; }
+  virtual std::string last_message() const { return {}; }
 };
 
 }  // namespace boxpile

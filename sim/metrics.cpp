@@ -1,12 +1,12 @@
-#include "sim/metrics.hpp"
+#include "boxpile/sim/metrics.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "sim/collision/box_box.hpp"
-#include "sim/collision/box_plane.hpp"
-#include "sim/collision/broadphase.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
+#include "boxpile/sim/collision/broadphase.hpp"
 
 namespace boxpile {
 

@@ -5,9 +5,9 @@
 #include <optional>
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/engine.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

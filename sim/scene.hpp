@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 
@@ -117,5 +117,10 @@ struct Scene {
 
 // The simulator's bodies for a scene, in scene order.
 std::vector<RigidBody> make_bodies(const Scene& scene);
+
+// An approach faster than this counts as a collision event (m/s), in our World's events and in
+// every engine's events of a compare report alike: above twice the |g| dt that gravity adds to a
+// resting contact in one step, and above rounding.
+double collision_event_speed(const Scene& scene, double dt);
 
 }  // namespace boxpile

@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "sim/limits.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/limits.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "sim/world.hpp"
+#include "boxpile/sim/world.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +9,7 @@ World::World(const Scene& scene, std::string name)
     : scene_(scene),
       name_(std::move(name)),
       bodies_(make_bodies(scene)),
+      placed_(bodies_),
       wires_(make_wire_joints(scene, bodies_)),
       method_(make_contact_method(scene, bodies_)) {
   ground_.name = "ground";
@@ -21,7 +22,10 @@ World::World(const Scene& scene, std::string name)
     for (const BoxShape& box : b.shapes) r = std::max(r, box.offset.norm() + box.half_extents.norm());
     bounding_radius_.push_back(r);
   }
-  contacts_.reserve(8 * bodies_.size());
+  const StepStorage storage{bodies_.size()};
+  contacts_.reserve(storage.contacts());
+  events_.reserve(storage.events());
+  broadphase_.reserve(storage);
 }
 
 void World::step() {
@@ -48,19 +52,20 @@ void World::find_contacts(double dt) {
     const RigidBody& b = bodies_[i];
     margins_[i] = base + (b.v.norm() + b.omega.norm() * bounding_radius_[i]) * dt;
   }
+  placed_.place(bodies_);
   CollisionSettings cs = scene_.collision;
   for (const auto& [i, j] : broadphase_.find_pairs(bodies_, margins_)) {
     ++counters_.broadphase_pairs;
     counters_.narrowphase_calls += bodies_[i].shapes.size() * bodies_[j].shapes.size();
     cs.margin = margins_[i] + margins_[j] - base;
-    collide_bodies(bodies_, i, j, cs, contacts_);
+    collide_bodies(placed_, i, j, cs, contacts_);
   }
   if (!scene_.ground) return;
   for (int i = 0; i < static_cast<int>(bodies_.size()); ++i) {
     if (bodies_[i].fixed) continue;
     counters_.narrowphase_calls += bodies_[i].shapes.size();
     cs.margin = margins_[i];
-    collide_body_ground(bodies_, i, *scene_.ground, cs, contacts_);
+    collide_body_ground(placed_, i, *scene_.ground, cs, contacts_);
   }
 }
 

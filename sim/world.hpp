@@ -8,14 +8,15 @@
 #include <string_view>
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/collision/broadphase.hpp"
-#include "sim/collision/collide.hpp"
-#include "sim/engine.hpp"
-#include "sim/scene.hpp"
-#include "sim/solver/contact_method.hpp"
-#include "sim/solver/step_context.hpp"
-#include "sim/solver/wire.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/collision/broadphase.hpp"
+#include "boxpile/sim/collision/collide.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/scene.hpp"
+#include "boxpile/sim/step_storage.hpp"
+#include "boxpile/sim/solver/contact_method.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/sim/solver/wire.hpp"
 
 namespace boxpile {
 
@@ -29,6 +30,12 @@ class World final : public Engine {
   double time() const override { return time_; }
   void body_states(std::vector<BodyState>& out) const override;
   void contacts(std::vector<BodyContact>& out) const override { out = contacts_; }
+  const std::vector<CollisionEvent>* collision_events() const override { return &events_; }
+  const StepStats* solver_stats() const override { return &stats_; }
+  const WorldCounters* solver_counters() const override { return &counters_; }
+  std::string_view contact_method() const override {
+    return scene_.solver.method == ContactSolver::Penalty ? "penalty" : "impulse";
+  }
 
   const std::vector<RigidBody>& bodies() const { return bodies_; }
   std::vector<RigidBody>& bodies() { return bodies_; }
@@ -49,6 +56,7 @@ class World final : public Engine {
   double time_ = 0.0;
 
   SweepAndPrune broadphase_;
+  PlacedBoxes placed_;  // every body's boxes in the world, placed once per contact search
   std::vector<BodyContact> contacts_;
   std::vector<WireJoint> wires_;
   std::unique_ptr<ContactMethod> method_;

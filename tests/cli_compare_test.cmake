@@ -6,11 +6,6 @@ file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 include("${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake")
 
-function(expect_absent path)
-  if(EXISTS "${path}")
-    fail("${path} exists: a report was written for bad input")
-  endif()
-endfunction()
 
 set(stack "${FIXTURES}/scenes/stack_5.json")
 
@@ -22,7 +17,7 @@ expect_contains("${out}" "report: ")
 expect_contains("${out}" "report/report.md")
 expect_contains("${err}" "[1/4] ode")
 foreach(f report.json report.md energy.svg energy.dat energy.gp penetration.svg stack_height.svg
-          position_difference.svg)
+          position_difference.svg replay.html replay.json)
   if(NOT EXISTS "${WORK}/report/${f}")
     fail("compare: ${f} missing from the report")
   endif()
@@ -36,6 +31,40 @@ string(JSON ideal GET "${report}" engines ode stacks 0 ideal)
 if(NOT ideal EQUAL 5)
   fail("compare: the stack of five's ideal height is ${ideal}, expected 5")
 endif()
+# The replay's data: both engines, every recorded frame, the contact counts of report.json.
+file(READ "${WORK}/report/replay.json" replay)
+expect_json("${replay}" ode engines 0 name)
+expect_json("${replay}" bullet engines 1 name)
+string(JSON frames LENGTH "${report}" engines ode series t)
+expect_length("${replay}" ${frames} engines 0 t)
+string(JSON last_contacts GET "${report}" engines bullet series contacts 3)
+expect_json("${replay}" ${last_contacts} engines 1 contact_counts 3)
+if(last_contacts LESS 5)  # five boxes rest on each other and on the ground
+  fail("compare: bullet's frame 3 holds ${last_contacts} contact points, expected at least 5")
+endif()
+# `boxpile view DIR` makes the page again, to another file; a directory that is not a report fails.
+run_boxpile(0 view "${WORK}/report" --out "${WORK}/again.html")
+expect_contains("${out}" "again.html")
+file(SIZE "${WORK}/again.html" again)
+file(SIZE "${WORK}/report/replay.html" first)
+if(NOT again EQUAL first)
+  fail("view DIR: ${again} bytes, compare wrote ${first}")
+endif()
+file(MAKE_DIRECTORY "${WORK}/not_a_report")
+expect_refused("not a boxpile report directory" "${WORK}/not_a_report/replay.html" view "${WORK}/not_a_report")
+
+# Without three.js the report is written all the same, without the page, and says so; `view`
+# fails (exit 1: nothing wrong with the input) and writes nothing.
+set(ENV{BOXPILE_THREE_DIR} "${WORK}/no_three")
+run_boxpile(0 compare "${stack}" --engines bullet --duration 0.1 --report "${WORK}/no_three_report")
+expect_contains("${err}" "libjs-three")
+expect_exists("${WORK}/no_three_report/replay.json")
+expect_absent("${WORK}/no_three_report/replay.html")
+run_boxpile(1 view "${WORK}/no_three_report")
+expect_contains("${err}" "three.min.js")
+expect_absent("${WORK}/no_three_report/replay.html")
+unset(ENV{BOXPILE_THREE_DIR})
+
 # Run again into the same directory: the previous report is replaced whole.
 run_boxpile(0 compare "${stack}" --engines bullet --duration 0.1 --report "${WORK}/report")
 file(READ "${WORK}/report/report.json" report)
@@ -45,17 +74,10 @@ if(NOT n EQUAL 1)
 endif()
 
 # --- bad input: exit 2, a message, nothing written ---
-run_boxpile(2 compare "${stack}" --engines own,physx --report "${WORK}/bad_engine")
-expect_contains("${err}" "unknown engine \"physx\"; available: own, own-impulse, own-penalty, ode, bullet")
-expect_absent("${WORK}/bad_engine")
-
-run_boxpile(2 compare "${WORK}/missing.json" --report "${WORK}/bad_scene")
-expect_contains("${err}" "missing.json")
-expect_absent("${WORK}/bad_scene")
-
-run_boxpile(2 compare "${FIXTURES}/bad/overlap.json" --report "${WORK}/bad_overlap")
-expect_contains("${err}" "overlap.json")
-expect_absent("${WORK}/bad_overlap")
+expect_refused("unknown engine \"physx\"; available: own, own-impulse, own-penalty, ode, bullet" "${WORK}/bad_engine"
+               compare "${stack}" --engines own,physx --report "${WORK}/bad_engine")
+expect_refused("missing.json" "${WORK}/bad_scene" compare "${WORK}/missing.json" --report "${WORK}/bad_scene")
+expect_refused("overlap.json" "${WORK}/bad_overlap" compare "${FIXTURES}/bad/overlap.json" --report "${WORK}/bad_overlap")
 
 file(WRITE "${WORK}/a_file" "not a directory\n")
 run_boxpile(2 compare "${stack}" --duration 0.1 --report "${WORK}/a_file/report")

@@ -45,3 +45,23 @@ function(expect_contains text fragment)
     fail("expected '${fragment}' in:\n${text}")
   endif()
 endfunction()
+
+function(expect_absent path)
+  if(EXISTS "${path}")
+    fail("${path} exists: output was written for bad input")
+  endif()
+endfunction()
+
+function(expect_exists path)
+  if(NOT EXISTS "${path}")
+    fail("${path} was not written")
+  endif()
+endfunction()
+
+# expect_refused(<message fragment> <path> <args...>): boxpile exits with 2 for bad input, its
+# message holds the fragment, and nothing is written at the path.
+function(expect_refused fragment path)
+  run_boxpile(2 ${ARGN})
+  expect_contains("${err}" "${fragment}")
+  expect_absent("${path}")
+endfunction()

@@ -53,7 +53,23 @@ expect_length("${run}" 13 frames)  # steps 0, 10, ..., 120
 expect_length("${run}" 5 final bodies)
 expect_json("${run}" b4 final bodies 4 name)
 expect_length("${run}" 4 frames 0 bodies 0 orientation)
-expect_json("${run}" 0 frames 0 contacts)
+expect_json("${run}" 0 frames 0 contact_count)  # no step yet
+expect_length("${run}" 0 frames 0 contacts)
+expect_length("${run}" 5 shapes bodies)
+expect_match("${run}" "^0(\\.0)?$" shapes ground offset)
+expect_length("${run}" 1 shapes bodies 0 boxes)
+# A resting stack: every frame after the start holds the contacts of its five resting pairs.
+string(JSON count GET "${run}" frames 12 contact_count)
+expect_length("${run}" ${count} frames 12 contacts)
+if(count LESS 5)
+  fail("run --out: ${count} contacts at the end of a resting stack of five, expected at least 5")
+endif()
+# Boxes stacked straight up touch face to face: every normal is vertical.
+string(JSON normal_z GET "${run}" frames 12 contacts 0 normal 2)
+string(REGEX REPLACE "^-" "" normal_z "${normal_z}")
+if(NOT normal_z GREATER 0.999999)
+  fail("run --out: contact 0 has normal z ${normal_z}, expected +-1 (vertical)")
+endif()
 expect_match("${run}" "^(0\\.50*[0-9]?|0\\.49999999999999[0-9]*)$" final t)
 
 run_boxpile(0 run "${FIXTURES}/scenes/stack_5.json" --engine ode --dt 0.01 --duration 0.1 --out "${WORK}/dt.json")
@@ -93,3 +109,23 @@ run_boxpile(0 run "${FIXTURES}/scenes/stack_5.json" --engine ode --duration 0.1 
 if(NOT EXISTS "${WORK}/no/such/dir/x.json")
   fail("x.json not written under new parent directories")
 endif()
+
+# --- view: a replay page for a run file ---
+run_boxpile(0 view "${WORK}/run.json")
+expect_contains("${out}" "run.html")
+file(READ "${WORK}/run.html" page)
+expect_contains("${page}" "\"format\":\"boxpile-replay-1\"")
+expect_contains("${page}" "OrbitControls")
+run_boxpile(0 view "${WORK}/run.json" --out "${WORK}/elsewhere.html")
+expect_exists("${WORK}/elsewhere.html")
+# Bad input: exit 2, the file and field named, nothing written.
+run_boxpile(2 view "${WORK}/missing.json")
+expect_contains("${err}" "missing.json")
+expect_refused("stack_5.json" "${WORK}/scene.html" view "${FIXTURES}/scenes/stack_5.json" --out "${WORK}/scene.html")
+file(WRITE "${WORK}/broken.json" "{\"scene\": \"x\", \"engine\": \"own\", \"dt\": 0.01, \"shapes\": {\"ground\": null, \"bodies\": []}, \"frames\": []}")
+expect_refused("broken.json: frames: a recording needs at least one frame" "${WORK}/broken.html" view "${WORK}/broken.json")
+# A missing parent directory is created, as for every output.
+run_boxpile(0 view "${WORK}/run.json" --out "${WORK}/no/such/view/page.html")
+expect_exists("${WORK}/no/such/view/page.html")
+run_boxpile(2 view "${WORK}/run.json" --out "${WORK}/run.json")
+expect_contains("${err}" "replace its own input")

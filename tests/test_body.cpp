@@ -8,8 +8,8 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "sim/body.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/scene.hpp"
 
 using namespace boxpile;
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "sim/io/scene_loader.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/wire_check.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/wire_check.hpp"
 
 using namespace boxpile;
 

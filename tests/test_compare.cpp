@@ -14,12 +14,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/scene_loader.hpp"
-#include "validation/compare.hpp"
-#include "validation/report.hpp"
-#include "validation/report_directory.hpp"
-#include "validation/stacks.hpp"
-#include "validation/wire_check.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/report.hpp"
+#include "boxpile/validation/report_directory.hpp"
+#include "boxpile/validation/stacks.hpp"
+#include "boxpile/validation/wire_check.hpp"
 
 using namespace boxpile;
 using nlohmann::json;
@@ -53,7 +53,7 @@ int run_boxpile(const std::string& args) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// Every key the issue fixes for other tools, present with the right type.
+// Every key docs/compare.md fixes for other tools, present with the right type.
 void check_report_keys(const json& r, const std::vector<std::string>& engines) {
   CHECK(r.at("scene").is_string());
   CHECK(r.at("dt").is_number());
@@ -119,7 +119,7 @@ TEST_CASE("compare on a stack of five gives every field of the report", "[compar
   for (const EngineRun& run : r.runs) {
     INFO("engine " << run.engine);
     CHECK(run.steps == 120);
-    CHECK(run.frames.t.size() == 31);  // every 4 steps at 60 frames per second, and the start
+    CHECK(run.recording.frames.t.size() == 31);  // every 4 steps at 60 frames per second, and the start
     CHECK(run.energy_initial == Approx(122.625).margin(1e-9));  // 9.81 * (0.5 + ... + 4.5)
     CHECK(run.finite);
     // A resting stack stays one stack of five, settled within a millimetre of 5 m.

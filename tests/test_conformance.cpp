@@ -6,9 +6,9 @@
 // kind of disagreement counted and gated by a stated limit rather than required never to happen.
 // Where we and a reference disagree, brute force decides who is right: the exact least
 // penetration over the 15 candidate axes and the exact penetration along each reported normal
-// (tests/support/geometry.hpp). Set BOXPILE_DUMP_DIR to write every disagreement as a contact
-// query; the ones worth keeping are committed under fixtures/contacts/ with a note, and the
-// fixture test below checks what each engine reports for them.
+// (validation/judge/, the judge of `boxpile conform` too). Set BOXPILE_DUMP_DIR to write every
+// disagreement as a contact query; the ones worth keeping are committed under fixtures/contacts/
+// with a note, and the fixture test below checks what each engine reports for them.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -23,16 +23,18 @@
 #include <string>
 #include <vector>
 
-#include "reference/bullet_engine.hpp"
-#include "reference/ode_engine.hpp"
-#include "reference/reference_contacts.hpp"
-#include "sim/collision/box_box.hpp"
-#include "sim/collision/box_plane.hpp"
-#include "sim/io/query_loader.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "tests/support/geometry.hpp"
-#include "validation/contact_diff.hpp"
-#include "validation/engine_factory.hpp"
+#include "boxpile/reference/bullet_engine.hpp"
+#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/reference/reference_contacts.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
+#include "boxpile/sim/io/query_loader.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/tests/support/geometry.hpp"
+#include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/judge/judge.hpp"
 
 using namespace boxpile;
 using namespace boxpile::test;
@@ -42,23 +44,13 @@ namespace {
 constexpr int kDefaultSamples = 20000;
 
 // --- tolerances -------------------------------------------------------------------------------
-// Boxes of 0.1-1 m computed in double precision from the same rotation matrices: agreeing
-// detectors differ by rounding (1e-15 m); these bounds sit far above that and far below any
-// physical difference.
-constexpr double kNormalTolerance = 1e-8;  // rad, between normals of the same feature kind
-constexpr double kDepthTolerance = 1e-9;   // m, between deepest depths
-// ODE and Bullet find face points in reference-face coordinates through a 2x2 inverse, which
-// loses digits when the incident face stands nearly on edge: 1e-7 m covers that.
-constexpr double kRegionTolerance = 1e-7;  // m, reference point to our contact region
-constexpr double kUnitTolerance = 1e-12;   // |n| - 1
-// Within this of zero, the least penetration says "touching": either answer is right.
-constexpr double kTouchingTolerance = 1e-9;  // m
-
-// Both we and the references prefer a face axis to an edge axis up to about 5% of depth (ours:
-// edge only if 5% + 1e-6 scale shallower, box_box.cpp; ODE and Bullet: fudge_factor 1.05), so a
-// normal whose penetration exceeds the least by up to this band is acceptable.
-constexpr double kFaceBiasRelative = 1.0 / 0.95 - 1.0;
-constexpr double kFaceBiasAbsolute = 1e-6 / 0.95;  // times the largest half extent
+// The judge's (validation/judge/judge.hpp): boxes of 0.1-1 m computed in double precision agree
+// to rounding (1e-15 m); these sit far above that and far below any physical difference.
+constexpr double kNormalTolerance = kJudgeNormalTolerance;      // rad
+constexpr double kDepthTolerance = kJudgeDepthTolerance;        // m
+constexpr double kRegionTolerance = kJudgeRegionTolerance;      // m
+constexpr double kUnitTolerance = kJudgeUnitTolerance;          // |n| - 1
+constexpr double kTouchingTolerance = kJudgeTouchingTolerance;  // m
 
 // Bullet's port of dBoxBox adds 1e-5 to every |C_ij| before the edge-axis tests (fudge2 in
 // btBoxBoxDetector.cpp), so its edge-edge depth exceeds the true one by
@@ -69,32 +61,14 @@ bool is_face(FeatureKind k) { return k == FeatureKind::FaceA || k == FeatureKind
 
 // --- brute force ------------------------------------------------------------------------------
 
-// How much the penetration along n exceeds the least penetration, and whether that is within
-// the face-bias band both detectors allow.
-struct NormalJudgement {
-  double excess = 0.0;  // m
-  bool acceptable = false;
-};
-NormalJudgement judge_normal(const BoxPair& p, const Vec3& n, const std::vector<Vec3>& axes, double least) {
-  const double scale = std::max(p.a.half.maxCoeff(), p.b.half.maxCoeff());
-  const double along = directional_penetration(p.a, p.b, n, axes);
-  NormalJudgement j;
-  j.excess = along - least;
-  j.acceptable = j.excess <= kFaceBiasRelative * least + kFaceBiasAbsolute * scale + kTouchingTolerance;
-  return j;
-}
-
 enum class Verdict { OwnRight, ReferenceRight, BothAcceptable, BothWrong };
 
 // Which normal is right. Between a face and an edge (`face_bias`), either is right within the
 // face-bias band; between two faces or two edges neither detector means to prefer one, so the
 // one nearer the least penetration is right (both, when within the touching tolerance).
 Verdict arbitrate_normals(const BoxPair& p, const Vec3& n_own, const Vec3& n_ref, bool face_bias) {
-  std::mt19937_64 unused;
-  const std::vector<Vec3> axes = candidate_axes(p.a, p.b, unused, 0);
-  const double least = least_penetration(p.a, p.b, axes);
-  const NormalJudgement own = judge_normal(p, n_own, axes, least);
-  const NormalJudgement ref = judge_normal(p, n_ref, axes, least);
+  const NormalJudgement own = judge_normal(p.a, p.b, n_own);
+  const NormalJudgement ref = judge_normal(p.a, p.b, n_ref);
   if (face_bias) {
     if (own.acceptable && ref.acceptable) return Verdict::BothAcceptable;
     if (own.acceptable) return Verdict::OwnRight;
@@ -108,8 +82,7 @@ Verdict arbitrate_normals(const BoxPair& p, const Vec3& n_own, const Vec3& n_ref
 // Presence: whoever says "contact" is right when the boxes overlap by more than the touching
 // tolerance, whoever says "none" when they are apart by more; in between both are.
 Verdict arbitrate_presence(const BoxPair& p, bool own_touches) {
-  std::mt19937_64 unused;
-  const double least = least_penetration(p.a, p.b, candidate_axes(p.a, p.b, unused, 0));
+  const double least = true_depth(p.a, p.b);
   if (std::abs(least) <= kTouchingTolerance) return Verdict::BothAcceptable;
   return (least > 0.0) == own_touches ? Verdict::OwnRight : Verdict::ReferenceRight;
 }
@@ -160,9 +133,9 @@ class Dumper {
 
 // --- box-box ----------------------------------------------------------------------------------
 
+// A reference detector of the table (validation/detectors.hpp) and what we know of its sets.
 struct Reference {
   const char* name;
-  Manifold (*detect)(const OrientedBox&, const OrientedBox&);
   int max_points;
   bool merges_close_points;  // Bullet's persistent manifold merges points nearer than its threshold
 };
@@ -280,7 +253,7 @@ std::optional<Verdict> arbitrate(Mismatch m, const BoxPair& p, const Manifold& o
 
 void compare_box_box(const Reference& ref, const BoxPair& p, int k, const Manifold& own, const SatResult& sat,
                      Tally& t, Dumper& dump) {
-  const Manifold theirs = ref.detect(p.a, p.b);
+  const Manifold theirs = find_detector(ref.name).box_box(p.a, p.b, DetectOptions{});
   ++t.samples;
   auto record = [&](Mismatch m, const std::string& why) {
     ++t.mismatches[m];
@@ -312,9 +285,9 @@ void report(const Reference& ref, const Tally& t) {
 
 // Mismatches allowed, as a fraction of the samples, per kind (see docs/reference-engines.md for
 // the measured rates behind them).
-using Gates = std::map<Mismatch, double>;
+using MismatchGates = std::map<Mismatch, double>;
 
-void check_gates(const Tally& t, const Gates& gates) {
+void check_gates(const Tally& t, const MismatchGates& gates) {
   for (const auto& [m, n] : t.mismatches) {
     INFO(mismatch_name(m) << ": " << n << " of " << t.samples);
     const auto g = gates.find(m);
@@ -330,8 +303,8 @@ void check_gates(const Tally& t, const Gates& gates) {
 TEST_CASE("our box-box contacts agree with ODE and Bullet on random pairs", "[conformance][box_box]") {
   std::mt19937_64 rng(test_seed(11));
   const int n = test_samples(kDefaultSamples);
-  const Reference ode{"ode", &ode_box_box, kMaxManifoldPoints, false};
-  const Reference bullet{"bullet", &bullet_box_box, 4, true};
+  const Reference ode{"ode", kMaxManifoldPoints, false};
+  const Reference bullet{"bullet", 4, true};
   Tally ode_tally, bullet_tally;
   Dumper dump;
   for (int k = 0; k < n; ++k) {
@@ -763,7 +736,7 @@ TEST_CASE("materials combine per pair: a box slides down an incline at g (sin - 
 }
 
 TEST_CASE("five stacked cubes stand for 5 s in both engines", "[reference]") {
-  // DESIGN.md measured top z - 4.5 = -1e-4 (ODE QuickStep) and -1.3e-4 (Bullet) at dt 1/240,
+  // Measured on this system: top z - 4.5 = -1e-4 (ODE QuickStep) and -1.3e-4 (Bullet) at dt 1/240,
   // with drift below 2e-3 m: these bounds leave room for noise but fail on any collapse.
   const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/stack_5.json");
   for (const char* name : kReferenceEngines) {
@@ -777,7 +750,7 @@ TEST_CASE("five stacked cubes stand for 5 s in both engines", "[reference]") {
     CHECK(top.position.z() - 4.5 < 1e-4);
     CHECK(top.position.head<2>().norm() < 1e-2);
     CHECK(top.velocity.norm() < 1e-2);
-    if (const auto* ode = dynamic_cast<const OdeEngine*>(engine.get())) CHECK(ode->messages() == 0);
+    CHECK(engine->messages() == 0);
   }
 }
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "sim/collision/box_box.hpp"
-#include "tests/support/geometry.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/tests/support/geometry.hpp"
 
 using namespace boxpile;
 using namespace boxpile::test;

@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
-#include "reference/ode_engine.hpp"
-#include "sim/finite.hpp"
-#include "sim/limits.hpp"
-#include "sim/scene.hpp"
-#include "validation/compare.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/output_safety.hpp"
+#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/sim/finite.hpp"
+#include "boxpile/sim/limits.hpp"
+#include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/output_safety.hpp"
 
 using namespace boxpile;
 using Catch::Matchers::Contains;
@@ -128,7 +128,7 @@ TEST_CASE("a run that turns non-finite stops there and compare marks the engine 
   CHECK_FALSE(run.finite);
   // What the report keeps is the last finite state, never NaN.
   CHECK_FALSE(find_non_finite(run.final_states));
-  CHECK(run.frames.t.back() == Approx(static_cast<double>(run.steps) * scene.time.dt));
+  CHECK(run.recording.frames.t.back() == Approx(static_cast<double>(run.steps) * scene.time.dt));
 }
 
 namespace {

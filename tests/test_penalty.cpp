@@ -9,10 +9,10 @@
 #include <new>
 #include <string>
 
-#include "sim/io/scene_loader.hpp"
-#include "sim/metrics.hpp"
-#include "sim/solver/penalty_parameters.hpp"
-#include "sim/world.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/metrics.hpp"
+#include "boxpile/sim/solver/penalty_parameters.hpp"
+#include "boxpile/sim/world.hpp"
 
 // Every heap allocation in this test program is counted, so that a test can check that a
 // stretch of steps allocates nothing.

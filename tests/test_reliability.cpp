@@ -9,10 +9,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/finite.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "sim/limits.hpp"
-#include "sim/time_steps.hpp"
+#include "boxpile/sim/finite.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/limits.hpp"
+#include "boxpile/sim/time_steps.hpp"
 
 using namespace boxpile;
 using nlohmann::json;

@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/json_input.hpp"
-#include "sim/io/query_loader.hpp"
-#include "sim/io/scene_loader.hpp"
+#include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/sim/io/query_loader.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
 
 using namespace boxpile;
 using nlohmann::json;

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <string>
 
-#include "sim/io/scene_loader.hpp"
-#include "sim/metrics.hpp"
-#include "sim/world.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/metrics.hpp"
+#include "boxpile/sim/world.hpp"
 
 using namespace boxpile;
 using Catch::Matchers::WithinAbs;

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "sim/metrics.hpp"
-#include "sim/world.hpp"
+#include "boxpile/sim/metrics.hpp"
+#include "boxpile/sim/world.hpp"
 
 using namespace boxpile;
 

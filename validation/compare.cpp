@@ -1,33 +1,26 @@
-#include "validation/compare.hpp"
+#include "boxpile/validation/compare.hpp"
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
 
-#include "reference/ode_engine.hpp"
-#include "reference/reference_contacts.hpp"
-#include "sim/collision/box.hpp"
-#include "sim/collision/box_box.hpp"
-#include "sim/collision/box_plane.hpp"
-#include "sim/collision/broadphase.hpp"
-#include "sim/finite.hpp"
-#include "sim/time_steps.hpp"
-#include "sim/world.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/state_meter.hpp"
-#include "validation/wire_check.hpp"
+#include "boxpile/reference/reference_contacts.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
+#include "boxpile/sim/collision/broadphase.hpp"
+#include "boxpile/sim/time_steps.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/run_loop.hpp"
+#include "boxpile/validation/state_meter.hpp"
+#include "boxpile/validation/wire_check.hpp"
 
 namespace boxpile {
 namespace {
-
-// An approach faster than this is an impact: the rule our World uses for its collision events
-// (sim/world.cpp), so that every engine's events mean the same: above the |g| dt that gravity adds
-// to a resting contact in one step (twice it), and above rounding.
-constexpr double kEventSpeedMin = 0.01;  // m/s
-constexpr double kEventSpeedGravitySteps = 2.0;
 
 // The golden angle turns each body's perturbation away from the last one's, so that no two
 // neighbours are pushed the same way.
@@ -46,9 +39,6 @@ long steps_per_frame(const Scene& scene, double frame_rate) {
   return std::max(1L, std::lround(1.0 / (frame_rate * scene.time.dt)));
 }
 
-double event_speed(const Scene& scene) {
-  return std::max(kEventSpeedMin, kEventSpeedGravitySteps * scene.gravity.norm() * scene.time.dt);
-}
 
 // Impacts in one step of a reference engine: each contact point of the step's set approaching
 // faster than `speed` with the velocities before the step, and closing its gap within the step
@@ -77,8 +67,8 @@ void find_impacts(const std::vector<BodyContact>& contacts, const std::vector<Ri
 // outside in the same step for the same pair. (Its own approach speed is not used: it is measured
 // during the sequential passes, after other points' impulses have turned the body, so a box
 // landing flat at 4.45 m/s reads 4.88 m/s at its last corner.)
-void attach_impulses(const World& world, double dt, std::vector<ImpactEvent>& events) {
-  for (const CollisionEvent& e : world.events()) {
+void attach_impulses(const std::vector<CollisionEvent>& recorded, double dt, std::vector<ImpactEvent>& events) {
+  for (const CollisionEvent& e : recorded) {
     for (ImpactEvent& ev : events) {
       if (ev.body_a == e.body_a && ev.body_b == e.body_b && std::abs(ev.t - e.time) < 0.5 * dt) ev.impulse = e.impulse;
     }
@@ -119,107 +109,78 @@ class WireWatch {
   std::vector<WireReport> reports_;
 };
 
-enum class RunDetail { Full, StatesOnly };
-
 EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettings& settings,
-                  RunDetail detail, const std::function<void(double)>& progress) {
+                  RecordDetail detail, const std::function<void(double)>& progress) {
   EngineRun run;
   run.engine = std::string(name);
   const std::unique_ptr<Engine> engine = make_engine(name, scene, settings.reference);
-  const auto* own = dynamic_cast<const World*>(engine.get());
-  const auto* ode = dynamic_cast<const OdeEngine*>(engine.get());
-  const bool full = detail == RunDetail::Full;
+  const bool full = detail == RecordDetail::Full;
   const double dt = scene.time.dt;
   const long steps = step_count(scene.time);
-  const long every = steps_per_frame(scene, settings.frame_rate);
-  const double speed = event_speed(scene);
+  const double speed = collision_event_speed(scene, scene.time.dt);
 
   StateMeter meter(scene);
   WireWatch wires(scene);
+  Recorder recorder(scene, run.engine, detail);
   std::vector<RigidBody> posed = make_bodies(scene);
-  std::vector<BodyState> states, before;
   std::vector<BodyContact> contacts;
 
-  auto measure_step = [&](double t) {
-    if (!full) return;
-    const FrameMetrics m = meter.measure_step(states);
+  // Every step: energy, penetration and the wires measured, impacts found.
+  auto measure_step = [&](const StepView& v) {
+    const FrameMetrics m = meter.measure_step(v.states);
     const double e = m.energy.total();
-    if (t == 0.0) run.energy_initial = run.energy_max = e;
+    if (v.step == 0) run.energy_initial = run.energy_max = e;
     if (e > run.energy_max) {
       run.energy_max = e;
-      run.energy_max_t = t;
+      run.energy_max_t = v.t;
     }
     run.energy_final = e;
     if (m.penetration.depth > run.deepest.depth) {
       run.deepest = m.penetration;
-      run.deepest_t = t;
+      run.deepest_t = v.t;
     }
-    wires.measure(states);
+    wires.measure(v.states);
+    if (v.step == 0) return;
+    v.engine.contacts(contacts);
+    set_body_states(posed, v.before);
+    find_impacts(contacts, posed, v.t - dt, dt, speed, run.events);
   };
-  auto record = [&](double t) {
-    FrameSeries& f = run.frames;
-    f.t.push_back(t);
-    f.states.push_back(states);
+  // Every frame: the recording, the tallest stack and levitation.
+  auto record = [&](const StepView& v) {
+    recorder.frame(v);
+    if (progress && v.step > 0) progress(static_cast<double>(v.step) / static_cast<double>(steps));
     if (!full) return;
-    const FrameMetrics m = meter.measure(states);
-    f.energy.push_back(m.energy.total());
-    f.penetration.push_back(m.penetration.depth);
-    f.levitation.push_back(m.levitation);
-    set_body_states(posed, states);
-    f.stack_height.push_back(tallest_stack(posed, scene, settings.touch_tolerance));
+    set_body_states(posed, v.states);
+    recorder.recording().frames.stack_height.push_back(tallest_stack(posed, scene, settings.touch_tolerance));
     // At the start every body is at rest, wherever the scene put it: a body placed in the air
     // is not levitating yet.
-    if (t > 0.0) run.levitation_max = std::max(run.levitation_max, m.levitation);
-    run.levitation_final = m.levitation;
+    const double levitation = recorder.last_metrics().levitation;
+    if (v.step > 0) run.levitation_max = std::max(run.levitation_max, levitation);
+    run.levitation_final = levitation;
   };
 
-  engine->body_states(states);
-  measure_step(0.0);
-  record(0.0);
-  using Clock = std::chrono::steady_clock;
-  Clock::duration stepping{};
-  for (long k = 1; k <= steps; ++k) {
-    std::swap(before, states);
-    const Clock::time_point start = Clock::now();
-    engine->step();
-    stepping += Clock::now() - start;
-    const double t = static_cast<double>(k) * dt;
-    engine->body_states(states);
-    if (const auto bad = find_non_finite(states)) {
-      // The run stops here: nothing after a non-finite state means anything.
-      // The report keeps the last finite states (those of step k - 1).
-      run.failure = describe_non_finite(k, t, states, *bad);
-      run.steps = k - 1;
-      std::swap(before, states);
-      const double t_last = static_cast<double>(k - 1) * dt;
-      if (run.frames.t.back() < t_last) record(t_last);
-      break;
-    }
-    if (full) {
-      engine->contacts(contacts);
-      set_body_states(posed, before);
-      find_impacts(contacts, posed, t - dt, dt, speed, run.events);
-    }
-    measure_step(t);
-    if (k % every == 0 || k == steps) {
-      record(t);
-      if (progress) progress(static_cast<double>(k) / static_cast<double>(steps));
-    }
-  }
+  RunHooks hooks;
+  if (full) hooks.step = measure_step;
+  hooks.frame = record;
+  const RunLoopResult loop =
+      run_loop(*engine, dt, steps, steps_per_frame(scene, settings.frame_rate), hooks);
 
-  if (!run.failure) run.steps = steps;
-  run.wall_seconds = std::chrono::duration<double>(stepping).count();
-  run.us_per_step = run.steps > 0 ? 1e6 * run.wall_seconds / static_cast<double>(run.steps) : 0.0;
-  run.final_states = states;
-  run.final_t = static_cast<double>(run.steps) * dt;
-  run.finite = !run.failure;
-  run.engine_messages = ode ? ode->messages() : 0;
+  run.steps = loop.steps;
+  run.wall_seconds = loop.wall_seconds;
+  run.us_per_step = loop.steps > 0 ? 1e6 * run.wall_seconds / static_cast<double>(loop.steps) : 0.0;
+  run.final_states = loop.final_states;
+  run.final_t = loop.final_t;
+  run.finite = !loop.stopped;
+  if (loop.stopped) run.failure = loop.stopped->description;
+  run.recording = std::move(recorder.recording());
+  run.recording.stopped = loop.stopped;
+  run.engine_messages = engine->messages();
   if (!full) return run;
 
-  if (own) attach_impulses(*own, dt, run.events);
+  if (const auto* recorded = engine->collision_events()) attach_impulses(*recorded, dt, run.events);
   run.wires = wires.reports();
   const std::vector<RigidBody> start = make_bodies(scene);
-  set_body_states(posed, states);
+  set_body_states(posed, run.final_states);
   run.stacks = report_stacks(find_stacks(posed, scene, settings.touch_tolerance),
                              find_stacks(start, scene, settings.touch_tolerance), posed);
   return run;
@@ -242,7 +203,7 @@ std::string verdict(const RunDifference& d, const std::optional<double>& chaos_t
 // at the end) and the one nearest after the deepest penetration.
 std::vector<std::pair<std::size_t, std::string>> contact_frames(const EngineRun& run, int count) {
   std::vector<std::pair<std::size_t, std::string>> chosen;
-  const std::vector<double>& t = run.frames.t;
+  const std::vector<double>& t = run.recording.frames.t;
   if (t.empty()) return chosen;
   auto nearest_at_or_after = [&](double time) {
     const auto it = std::lower_bound(t.begin(), t.end(), time - 1e-12);
@@ -265,7 +226,7 @@ std::vector<std::pair<std::size_t, std::string>> contact_frames(const EngineRun&
 
 EngineRun run_engine(const Scene& scene, std::string_view engine, const CompareSettings& settings,
                      const std::function<void(double)>& progress) {
-  return run_one(scene, engine, settings, RunDetail::Full, progress);
+  return run_one(scene, engine, settings, RecordDetail::Full, progress);
 }
 
 Scene perturbed_scene(const Scene& scene, double distance) {
@@ -338,6 +299,31 @@ RunDifference diff_runs(const std::string& a, const FrameSeries& fa, const std::
   return d;
 }
 
+namespace {
+
+// The detectors that apply to box-box and box-plane pairs alike, ours first.
+std::vector<const DetectorInfo*> pair_detectors() {
+  std::vector<const DetectorInfo*> shown;
+  for (const DetectorInfo& d : detectors()) {
+    if (d.box_plane_only) continue;
+    if (d.name == kOwnDetector) {
+      shown.insert(shown.begin(), &d);
+    } else {
+      shown.push_back(&d);
+    }
+  }
+  return shown;
+}
+
+}  // namespace
+
+const DetectorCheck& ContactPairCheck::of(std::string_view detector) const {
+  for (const DetectorCheck& d : detectors) {
+    if (d.detector == detector) return d;
+  }
+  throw std::out_of_range("no contact check of detector " + std::string(detector));
+}
+
 ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState>& states,
                                  double touch_tolerance) {
   ContactFrameCheck check;
@@ -346,19 +332,21 @@ ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState
   CollisionSettings own_settings = scene.collision;
   own_settings.margin = std::max(own_settings.margin, touch_tolerance);
 
+  DetectOptions options;
+  options.own = own_settings;
+  options.plane_margin = touch_tolerance;
+  const std::vector<const DetectorInfo*> shown = pair_detectors();
+
   std::vector<ContactPairCheck> pairs;
-  auto add = [&](int ia, int sa, int ib, int sb, const Manifold& own, const Manifold& ode, const Manifold& bullet) {
-    ContactPairCheck p;
-    p.body_a = ia;
-    p.shape_a = sa;
-    p.body_b = ib;
-    p.shape_b = sb;
-    p.own_points = own.size();
-    p.ode_points = ode.size();
-    p.bullet_points = bullet.size();
-    p.ode = diff_contacts(own, ode);
-    p.bullet = diff_contacts(own, bullet);
-    pairs.push_back(p);
+  // Runs every detector on the pair through `detect` and keeps the pair's check.
+  auto add = [&](int ia, int sa, int ib, int sb, const auto& detect) {
+    ContactPairCheck p{ia, sa, ib, sb, {}};
+    const Manifold own = detect(*shown.front());
+    for (const DetectorInfo* d : shown) {
+      const Manifold m = d == shown.front() ? own : detect(*d);
+      p.detectors.push_back({std::string(d->name), m.size(), diff_contacts(own, m)});
+    }
+    pairs.push_back(std::move(p));
   };
   auto box_of = [&](int body, int shape) {
     const RigidBody& b = bodies[static_cast<std::size_t>(body)];
@@ -374,9 +362,7 @@ ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState
       for (int s = 0; s < shapes_i; ++s) {
         const OrientedBox box = box_of(i, s);
         if (box_plane_depth(box, *scene.ground) < -touch_tolerance) continue;
-        Manifold own;
-        collide_box_plane(box, *scene.ground, touch_tolerance, own);
-        add(i, s, kGround, 0, own, ode_box_plane(box, *scene.ground), bullet_box_plane(box, *scene.ground));
+        add(i, s, kGround, 0, [&](const DetectorInfo& d) { return d.box_plane(box, *scene.ground, options); });
       }
     }
     const Aabb aabb_i = body_aabb(bi, touch_tolerance);
@@ -388,9 +374,7 @@ ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState
         for (int t = 0; t < static_cast<int>(bj.shapes.size()); ++t) {
           const OrientedBox b = box_of(j, t);
           if (box_box_sat(a, b, touch_tolerance).separation > touch_tolerance) continue;
-          Manifold own;
-          collide_box_box(a, b, own_settings, own);
-          add(i, s, j, t, own, ode_box_box(a, b), bullet_box_box(a, b));
+          add(i, s, j, t, [&](const DetectorInfo& d) { return d.box_box(a, b, options); });
         }
       }
     }
@@ -398,7 +382,10 @@ ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState
 
   check.pairs = static_cast<int>(pairs.size());
   for (const ContactPairCheck& p : pairs) {
-    if (p.own_points != p.ode_points || p.own_points != p.bullet_points) ++check.count_mismatches;
+    const int own = p.detectors.front().points;
+    if (std::any_of(p.detectors.begin(), p.detectors.end(), [own](const DetectorCheck& d) { return d.points != own; })) {
+      ++check.count_mismatches;
+    }
   }
   using Getter = std::optional<double> (*)(const ContactDiff&);
   const std::array<std::pair<const char*, Getter>, 3> metrics = {{
@@ -411,12 +398,12 @@ ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState
   }};
   for (const auto& [metric, get] : metrics) {
     const std::size_t first = check.worst.size();
-    for (const char* reference : {"ode", "bullet"}) {
-      const bool ode = std::string_view(reference) == "ode";
+    for (std::size_t k = 1; k < shown.size(); ++k) {
+      const std::string reference(shown[k]->name);
       const ContactPairCheck* worst = nullptr;
       double value = kNegligibleDisagreement;
       for (const ContactPairCheck& p : pairs) {
-        const std::optional<double> v = get(ode ? p.ode : p.bullet);
+        const std::optional<double> v = get(p.detectors[k].diff);
         if (v && *v > value) {
           value = *v;
           worst = &p;
@@ -453,14 +440,15 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
         settings.progress({names[e], baseline, static_cast<int>(2 * e) + (baseline ? 1 : 0), total, fraction});
       };
     };
-    result.runs.push_back(run_one(scene, names[e], settings, RunDetail::Full, progress_of(false)));
-    const EngineRun again = run_one(perturbed, names[e], settings, RunDetail::StatesOnly, progress_of(true));
+    result.runs.push_back(run_one(scene, names[e], settings, RecordDetail::Full, progress_of(false)));
+    const EngineRun again = run_one(perturbed, names[e], settings, RecordDetail::StatesOnly, progress_of(true));
     if (again.failure && !result.runs.back().failure) {
       result.runs.back().failure = "from the perturbed start, " + *again.failure;
     }
     Baseline b;
     b.engine = names[e];
-    b.divergence = diff_runs(names[e], result.runs.back().frames, names[e] + " perturbed", again.frames,
+    b.divergence = diff_runs(names[e], result.runs.back().recording.frames, names[e] + " perturbed",
+                               again.recording.frames,
                              settings.position_threshold, settings.orientation_threshold);
     b.growth_rate = growth_rate(b.divergence, settings.perturbation);
     result.baselines.push_back(std::move(b));
@@ -469,7 +457,7 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
   for (std::size_t i = 0; i < names.size(); ++i) {
     for (std::size_t j = i + 1; j < names.size(); ++j) {
       PairComparison p;
-      p.difference = diff_runs(names[i], result.runs[i].frames, names[j], result.runs[j].frames,
+      p.difference = diff_runs(names[i], result.runs[i].recording.frames, names[j], result.runs[j].recording.frames,
                                settings.position_threshold, settings.orientation_threshold);
       for (const std::size_t k : {i, j}) {
         const std::optional<double>& t = result.baselines[k].divergence.position_passes;
@@ -483,11 +471,11 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
   if (!result.runs.empty()) {
     const EngineRun& first = result.runs.front();
     for (const auto& [frame, why] : contact_frames(first, settings.contact_check_frames)) {
-      ContactFrameCheck c = check_contacts(scene, first.frames.states[frame], settings.touch_tolerance);
+      ContactFrameCheck c = check_contacts(scene, first.recording.frames.states[frame], settings.touch_tolerance);
       c.engine = first.engine;
       c.why = why;
       c.frame = frame;
-      c.t = first.frames.t[frame];
+      c.t = first.recording.frames.t[frame];
       result.contacts.push_back(std::move(c));
     }
   }

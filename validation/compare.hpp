@@ -11,12 +11,13 @@
 #include <string_view>
 #include <vector>
 
-#include "reference/settings.hpp"
-#include "sim/engine.hpp"
-#include "sim/metrics.hpp"
-#include "sim/scene.hpp"
-#include "validation/contact_diff.hpp"
-#include "validation/stacks.hpp"
+#include "boxpile/reference/settings.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/metrics.hpp"
+#include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/recording.hpp"
+#include "boxpile/validation/stacks.hpp"
 
 namespace boxpile {
 
@@ -61,16 +62,6 @@ struct ImpactEvent {
   std::optional<double> impulse;  // N s
 };
 
-// Recorded frames of one run: time, states and measurements at each.
-struct FrameSeries {
-  std::vector<double> t;
-  std::vector<std::vector<BodyState>> states;
-  std::vector<double> energy;        // J, total
-  std::vector<double> penetration;   // m, deepest
-  std::vector<double> levitation;    // m
-  std::vector<double> stack_height;  // m, the tallest stack (0 when none)
-};
-
 // How well a body on a wire stayed on it through a run (every step measured).
 struct WireReport {
   std::string body;
@@ -85,7 +76,9 @@ struct EngineRun {
   long steps = 0;
   double wall_seconds = 0.0;  // stepping only
   double us_per_step = 0.0;
-  FrameSeries frames;
+  // The recorded frames (CompareSettings::frame_rate), the bodies' shapes and the contact sets;
+  // `recording.stopped` says where a run that blew up stopped.
+  Recording recording;
   std::vector<BodyState> final_states;
   double final_t = 0.0;
   // Measured at every step.
@@ -145,13 +138,22 @@ struct PairComparison {
   std::string verdict;
 };
 
-// One touching pair of boxes (or a box and the ground) at a checked frame, through all three
-// detectors: our collide_box_box / collide_box_plane, ODE's dCollide, Bullet's detector.
+// One detector's contact set of a pair: its point count and how it differs from ours.
+struct DetectorCheck {
+  std::string detector;
+  int points = 0;
+  ContactDiff diff;  // against ours (ours against itself for "own")
+};
+
+// One touching pair of boxes (or a box and the ground) at a checked frame, through every
+// detector of the table that applies to box-box and box-plane alike (validation/detectors.hpp):
+// ours first, then ODE's and Bullet's.
 struct ContactPairCheck {
   int body_a = 0, shape_a = 0;
   int body_b = kGround, shape_b = 0;
-  int own_points = 0, ode_points = 0, bullet_points = 0;
-  ContactDiff ode, bullet;  // each against ours
+  std::vector<DetectorCheck> detectors;
+  // The check of one detector (it must be among them).
+  const DetectorCheck& of(std::string_view detector) const;
 };
 
 // The largest disagreement of one kind at a checked frame: "normal_angle" between the mean
@@ -161,7 +163,7 @@ struct ContactPairCheck {
 // listed.
 struct ContactDisagreement {
   std::string metric;
-  std::string reference;  // "ode" or "bullet"
+  std::string reference;  // a detector other than ours: "ode" or "bullet"
   double value = 0.0;
   ContactPairCheck pair;
 };
@@ -172,7 +174,7 @@ struct ContactFrameCheck {
   std::size_t frame = 0;
   double t = 0.0;
   int pairs = 0;            // touching pairs checked
-  int count_mismatches = 0;  // pairs where the three detectors give different point counts
+  int count_mismatches = 0;  // pairs where the detectors give different point counts
   std::vector<ContactDisagreement> worst;  // largest first within each metric
 };
 

@@ -1,4 +1,4 @@
-#include "validation/contact_diff.hpp"
+#include "boxpile/validation/contact_diff.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "sim/collision/contact.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 

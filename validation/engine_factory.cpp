@@ -1,11 +1,11 @@
-#include "validation/engine_factory.hpp"
+#include "boxpile/validation/engine_factory.hpp"
 
 #include <algorithm>
 #include <array>
 
-#include "reference/bullet_engine.hpp"
-#include "reference/ode_engine.hpp"
-#include "sim/world.hpp"
+#include "boxpile/reference/bullet_engine.hpp"
+#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/sim/world.hpp"
 
 namespace boxpile {
 namespace {

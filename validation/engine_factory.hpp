@@ -7,9 +7,9 @@
 #include <string>
 #include <string_view>
 
-#include "reference/settings.hpp"
-#include "sim/engine.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/reference/settings.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

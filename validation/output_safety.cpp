@@ -1,4 +1,4 @@
-#include "validation/output_safety.hpp"
+#include "boxpile/validation/output_safety.hpp"
 
 #include <dirent.h>
 #include <fcntl.h>

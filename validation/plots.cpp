@@ -1,4 +1,4 @@
-#include "validation/plots.hpp"
+#include "boxpile/validation/plots.hpp"
 
 #include <fcntl.h>
 #include <sys/wait.h>

@@ -1,4 +1,4 @@
-#include "validation/report.hpp"
+#include "boxpile/validation/report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "validation/cli/json_output.hpp"
+#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/json_output.hpp"
+#include "boxpile/validation/replay_data.hpp"
+#include "boxpile/validation/replay_page.hpp"
+#include "boxpile/validation/report_directory.hpp"
 
 namespace boxpile {
 namespace {
@@ -39,6 +43,13 @@ json diff_json(const ContactDiff& d) {
           {"depth_difference", optional_number(d.depth_difference)},
           {"point_distance", optional_number(d.hull_distance)},
           {"hausdorff", optional_number(d.hausdorff)}};
+}
+
+// The number of contact points each recorded frame's contact set holds.
+json contact_counts(const FrameSeries& frames) {
+  json counts = json::array();
+  for (const std::vector<BodyContact>& c : frames.contacts) counts.push_back(c.size());
+  return counts;
 }
 
 json engine_json(const CompareResult& r, const EngineRun& run, const Baseline& baseline) {
@@ -90,11 +101,12 @@ json engine_json(const CompareResult& r, const EngineRun& run, const Baseline& b
             {"growth_rate", baseline.growth_rate},
             {"max_position", d.max_position}}},
           {"series",
-           {{"t", run.frames.t},
-            {"energy", run.frames.energy},
-            {"penetration", run.frames.penetration},
-            {"levitation", run.frames.levitation},
-            {"stack_height", run.frames.stack_height}}}};
+           {{"t", run.recording.frames.t},
+            {"energy", run.recording.frames.energy},
+            {"penetration", run.recording.frames.penetration},
+            {"levitation", run.recording.frames.levitation},
+            {"stack_height", run.recording.frames.stack_height},
+            {"contacts", contact_counts(run.recording.frames)}}}};
 }
 
 json pair_json(const CompareResult& r, const PairComparison& p) {
@@ -129,16 +141,21 @@ json contacts_json(const CompareResult& r, const ContactFrameCheck& c) {
   json worst = json::array();
   for (const ContactDisagreement& w : c.worst) {
     const ContactPairCheck& p = w.pair;
-    worst.push_back({{"metric", w.metric},
-                     {"reference", w.reference},
-                     {"value", w.value},
-                     {"body_a", body_name(r.scene, p.body_a)},
-                     {"shape_a", p.shape_a},
-                     {"body_b", body_name(r.scene, p.body_b)},
-                     {"shape_b", p.shape_b},
-                     {"points", {{"own", p.own_points}, {"ode", p.ode_points}, {"bullet", p.bullet_points}}},
-                     {"ode", diff_json(p.ode)},
-                     {"bullet", diff_json(p.bullet)}});
+    json entry = {{"metric", w.metric},
+                  {"reference", w.reference},
+                  {"value", w.value},
+                  {"body_a", body_name(r.scene, p.body_a)},
+                  {"shape_a", p.shape_a},
+                  {"body_b", body_name(r.scene, p.body_b)},
+                  {"shape_b", p.shape_b}};
+    // "points": every detector's count; then each other detector's diff against ours by its name.
+    json points = json::object();
+    for (const DetectorCheck& d : p.detectors) points[d.detector] = d.points;
+    entry["points"] = points;
+    for (const DetectorCheck& d : p.detectors) {
+      if (d.detector != kOwnDetector) entry[d.detector] = diff_json(d.diff);
+    }
+    worst.push_back(std::move(entry));
   }
   return {{"engine", c.engine}, {"why", c.why},     {"frame", c.frame},
           {"t", c.t},           {"pairs", c.pairs}, {"count_mismatches", c.count_mismatches},
@@ -330,15 +347,15 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
   for (std::size_t e = 0; e < r.runs.size(); ++e) {
     const EngineRun& run = r.runs[e];
     const int color = static_cast<int>(e);
-    energy.series.push_back({run.engine, run.frames.t, run.frames.energy, Style::Line, color});
+    energy.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.energy, Style::Line, color});
     PlotSeries impacts{run.engine + " impacts", {}, {}, Style::Points, color};
     for (const ImpactEvent& ev : run.events) {
       impacts.x.push_back(ev.t);
-      impacts.y.push_back(at_time(run.frames.t, run.frames.energy, ev.t));
+      impacts.y.push_back(at_time(run.recording.frames.t, run.recording.frames.energy, ev.t));
     }
     energy.series.push_back(std::move(impacts));
-    penetration.series.push_back({run.engine, run.frames.t, run.frames.penetration, Style::Line, color});
-    stacks.series.push_back({run.engine, run.frames.t, run.frames.stack_height, Style::Line, color});
+    penetration.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.penetration, Style::Line, color});
+    stacks.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.stack_height, Style::Line, color});
   }
   for (std::size_t p = 0; p < r.pairs.size(); ++p) {
     const RunDifference& d = r.pairs[p].difference;
@@ -356,9 +373,11 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
   return plots;
 }
 
-std::string report_markdown(const CompareResult& r, const std::vector<std::string>& plots,
-                            const std::vector<std::string>& notes) {
-  std::ostringstream md;
+namespace {
+
+// --- report.md, one section per writer ---------------------------------------------------------
+
+void write_md_run(std::ostream& md, const CompareResult& r) {
   const Scene& s = r.scene;
   md << "# boxpile compare: " << s.name << "\n\n";
   if (!s.note.empty()) md << s.note << "\n\n";
@@ -378,11 +397,18 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
     if (run.engine_messages > 0) md << run.engine << " printed " << run.engine_messages << " solver message(s).\n\n";
   }
 
+  md << "Watch the runs side by side in [replay.html](replay.html) (open it in a browser; docs/viewer.md "
+        "describes it).\n\n";
+}
+
+void write_md_engines(std::ostream& md, const CompareResult& r) {
   md << "## Per engine\n\n" << markdown_table(engine_header(r, "metric"), engine_rows(r)) << '\n';
   md << "Energy is measured the same way for every engine from its body states (the scene's bodies "
         "only). Impacts are pairs approaching faster than resting contact explains, found the same way "
         "for every engine from the contact set of each step and the velocities before it.\n\n";
+}
 
+void write_md_stacks(std::ostream& md, const CompareResult& r) {
   md << "### Stacks at the end\n\n";
   for (const EngineRun& run : r.runs) {
     md << "- " << run.engine << ": ";
@@ -396,31 +422,35 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
     md << '\n';
   }
   md << '\n';
+}
 
-  if (!r.pairs.empty()) {
-    md << "## Between engines\n\n"
-       << "| engines | largest position difference | largest orientation difference | passes "
-       << fmt(r.settings.position_threshold) << " m | engines diverge from themselves | verdict |\n"
-       << "|---|---:|---:|---:|---:|---|\n";
-    for (const PairComparison& p : r.pairs) {
-      const RunDifference& d = p.difference;
-      md << "| " << d.a << " vs " << d.b << " | " << fmt(d.largest_position, "%.3g") << " m ("
-         << d.largest_position_body
-         << ") | " << fmt(d.largest_orientation, "%.3g") << " rad (" << d.largest_orientation_body << ") | "
-         << optional_seconds(d.position_passes) << " | " << optional_seconds(p.chaos_time) << " | "
-         << verdict_text(p.verdict) << " |\n";
-    }
-    md << "\nA pair *differs* when its position difference passes the threshold earlier than half the time "
-          "either engine takes to pass it against its own perturbed run; later than that, chaos "
-          "explains it.\n\n";
+void write_md_pairs(std::ostream& md, const CompareResult& r) {
+  if (r.pairs.empty()) return;
+  md << "## Between engines\n\n"
+     << "| engines | largest position difference | largest orientation difference | passes "
+     << fmt(r.settings.position_threshold) << " m | engines diverge from themselves | verdict |\n"
+     << "|---|---:|---:|---:|---:|---|\n";
+  for (const PairComparison& p : r.pairs) {
+    const RunDifference& d = p.difference;
+    md << "| " << d.a << " vs " << d.b << " | " << fmt(d.largest_position, "%.3g") << " m ("
+       << d.largest_position_body
+       << ") | " << fmt(d.largest_orientation, "%.3g") << " rad (" << d.largest_orientation_body << ") | "
+       << optional_seconds(d.position_passes) << " | " << optional_seconds(p.chaos_time) << " | "
+       << verdict_text(p.verdict) << " |\n";
   }
+  md << "\nA pair *differs* when its position difference passes the threshold earlier than half the time "
+        "either engine takes to pass it against its own perturbed run; later than that, chaos "
+        "explains it.\n\n";
+}
 
-  if (!plots.empty()) {
-    md << "## Plots\n\n";
-    for (const std::string& p : plots) md << "![" << p << "](" << p << ".svg)\n\n";
-    md << "Each plot's data (`NAME.dat`) and gnuplot script (`NAME.gp`) are beside it.\n\n";
-  }
+void write_md_plots(std::ostream& md, const std::vector<std::string>& plots) {
+  if (plots.empty()) return;
+  md << "## Plots\n\n";
+  for (const std::string& p : plots) md << "![" << p << "](" << p << ".svg)\n\n";
+  md << "Each plot's data (`NAME.dat`) and gnuplot script (`NAME.gp`) are beside it.\n\n";
+}
 
+void write_md_largest(std::ostream& md, const CompareResult& r) {
   md << "## Largest disagreements\n\n";
   for (const PairComparison& p : r.pairs) {
     std::vector<const BodyDifference*> bodies;
@@ -435,6 +465,35 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
     md << '\n';
   }
   md << '\n';
+}
+
+void write_md_contact_check(std::ostream& md, const Scene& s, const ContactFrameCheck& c) {
+  md << "### Contact sets at t = " << seconds(c.t) << " (" << c.why << ", " << c.engine << "'s poses)\n\n"
+     << c.pairs << " touching pairs, each through our detector, ODE's and Bullet's; " << c.count_mismatches
+     << " give different point counts.\n\n";
+  if (c.worst.empty()) {
+    md << "No disagreement above rounding (1e-9) in normals, deepest depths or contact regions.\n\n";
+    return;
+  }
+  const std::vector<DetectorCheck>& shown = c.worst.front().pair.detectors;
+  md << "| largest | against | value | pair | points";
+  for (std::size_t k = 0; k < shown.size(); ++k) md << (k ? " / " : " ") << shown[k].detector;
+  md << " |\n|---|---|---:|---|---|\n";
+  for (const ContactDisagreement& w : c.worst) {
+    const ContactPairCheck& pc = w.pair;
+    const bool angle = w.metric == "normal_angle";
+    md << "| " << w.metric << " | " << w.reference << " | " << fmt(w.value, "%.3g") << (angle ? " rad" : " m")
+       << " | "
+       << body_name(s, pc.body_a) << "[" << pc.shape_a << "] / " << body_name(s, pc.body_b);
+    if (pc.body_b != kGround) md << "[" << pc.shape_b << "]";
+    md << " |";
+    for (std::size_t k = 0; k < pc.detectors.size(); ++k) md << (k ? " / " : " ") << pc.detectors[k].points;
+    md << " |\n";
+  }
+  md << '\n';
+}
+
+void write_md_contacts(std::ostream& md, const CompareResult& r) {
   if (!r.contacts.empty()) {
     md << "Contact sets below: on one engine's poses, every pair of boxes within "
        << fmt(r.settings.touch_tolerance) << " m (and every box near the ground) through all three detectors, "
@@ -442,26 +501,10 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
        << "deepest points, `point_distance` how far the smaller point set lies outside the contact region of "
        << "the larger (0 when one lies within the other's). The largest of each kind is listed.\n\n";
   }
-  for (const ContactFrameCheck& c : r.contacts) {
-    md << "### Contact sets at t = " << seconds(c.t) << " (" << c.why << ", " << c.engine << "'s poses)\n\n"
-       << c.pairs << " touching pairs, each through our detector, ODE's and Bullet's; " << c.count_mismatches
-       << " give different point counts.\n\n";
-    if (c.worst.empty()) {
-      md << "No disagreement above rounding (1e-9) in normals, deepest depths or contact regions.\n\n";
-      continue;
-    }
-    md << "| largest | against | value | pair | points own / ode / bullet |\n|---|---|---:|---|---|\n";
-    for (const ContactDisagreement& w : c.worst) {
-      const ContactPairCheck& pc = w.pair;
-      const bool angle = w.metric == "normal_angle";
-      md << "| " << w.metric << " | " << w.reference << " | " << fmt(w.value, "%.3g") << (angle ? " rad" : " m")
-         << " | "
-         << body_name(s, pc.body_a) << "[" << pc.shape_a << "] / " << body_name(s, pc.body_b);
-      if (pc.body_b != kGround) md << "[" << pc.shape_b << "]";
-      md << " | " << pc.own_points << " / " << pc.ode_points << " / " << pc.bullet_points << " |\n";
-    }
-    md << '\n';
-  }
+  for (const ContactFrameCheck& c : r.contacts) write_md_contact_check(md, r.scene, c);
+}
+
+void write_md_notes(std::ostream& md, const std::vector<std::string>& notes) {
   if (!notes.empty()) {
     md << "## Notes\n\n";
     for (const std::string& n : notes) md << "- " << n << '\n';
@@ -469,6 +512,21 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
   }
   md << "How to read this report: docs/compare.md in the boxpile sources. The same figures, and the "
         "series behind the plots, are in report.json.\n";
+}
+
+}  // namespace
+
+std::string report_markdown(const CompareResult& r, const std::vector<std::string>& plots,
+                            const std::vector<std::string>& notes) {
+  std::ostringstream md;
+  write_md_run(md, r);
+  write_md_engines(md, r);
+  write_md_stacks(md, r);
+  write_md_pairs(md, r);
+  write_md_plots(md, plots);
+  write_md_largest(md, r);
+  write_md_contacts(md, r);
+  write_md_notes(md, notes);
   return md.str();
 }
 
@@ -480,12 +538,23 @@ std::string summary_table(const CompareResult& r) {
   return os.str();
 }
 
-void write_report(const CompareResult& r, const fs::path& dir, std::vector<std::string>& notes) {
-  {
-    std::ofstream os(dir / "report.json");
-    os << report_json(r).dump(1) << '\n';
-    if (!os.flush()) throw std::runtime_error((dir / "report.json").string() + ": write failed");
+void write_replay(const CompareResult& r, const json& report, const fs::path& dir, std::vector<std::string>& notes) {
+  std::vector<const Recording*> runs;
+  for (const EngineRun& run : r.runs) runs.push_back(&run.recording);
+  const json data = replay_data(r.scene.name, runs, marks_from_report(report));
+  write_report_file(dir / kReplayData, data.dump(2) + '\n');
+  try {
+    write_report_file(dir / kReplayPage, replay_html(data, load_three_js()));
+  } catch (const ThreeJsMissing& e) {
+    notes.push_back(std::string(kReplayPage) + " not written: " + e.what() + "; `boxpile view` makes it from " +
+                    kReplayData + " once three.js is installed");
   }
+}
+
+void write_report(const CompareResult& r, const fs::path& dir, std::vector<std::string>& notes) {
+  const json report = report_json(r);
+  write_report_file(dir / "report.json", report.dump(1) + '\n');
+  write_replay(r, report, dir, notes);
   std::vector<std::string> rendered;
   const bool gnuplot = gnuplot_available();
   if (!gnuplot) notes.push_back("gnuplot not found (scripts/install-deps installs gnuplot-nox): plots not rendered; "
@@ -500,9 +569,7 @@ void write_report(const CompareResult& r, const fs::path& dir, std::vector<std::
       notes.push_back(e.what());
     }
   }
-  std::ofstream os(dir / "report.md");
-  os << report_markdown(r, rendered, notes);
-  if (!os.flush()) throw std::runtime_error((dir / "report.md").string() + ": write failed");
+  write_report_file(dir / "report.md", report_markdown(r, rendered, notes));
 }
 
 }  // namespace boxpile

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "validation/compare.hpp"
-#include "validation/plots.hpp"
+#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/plots.hpp"
 
 namespace boxpile {
 
@@ -27,8 +27,14 @@ std::string report_markdown(const CompareResult& result, const std::vector<std::
 // A table of the main figures per engine and one line per pair of engines, for the terminal.
 std::string summary_table(const CompareResult& result);
 
-// Writes report.json, report.md and the plots into `dir`. Plots that gnuplot cannot render are
-// reported in `notes` (and in report.md); their data and scripts are still written.
+// The replay page of a report and its data (the page's data, from which `boxpile view DIR` makes
+// the page again).
+inline constexpr const char* kReplayPage = "replay.html";
+inline constexpr const char* kReplayData = "replay.json";
+
+// Writes report.json, report.md, the plots, replay.json and replay.html into `dir`. Plots that
+// gnuplot cannot render are reported in `notes` (and in report.md); their data and scripts are
+// still written. Without three.js, replay.html is left out and a note says so.
 void write_report(const CompareResult& result, const std::filesystem::path& dir,
                   std::vector<std::string>& notes);
 

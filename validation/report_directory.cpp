@@ -1,4 +1,4 @@
-#include "validation/report_directory.hpp"
+#include "boxpile/validation/report_directory.hpp"
 
 #include <fcntl.h>
 #include <stdio.h>  // renameat2 (glibc 2.28)
@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -16,14 +17,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The one file that marks a directory as a boxpile report (and so safe to replace).
-constexpr const char* kMarker = "report.json";
-
 [[noreturn]] void refuse(const fs::path& target, const std::string& why) {
   throw ReportDirectoryError(target, why);
 }
 
-void check_target(const fs::path& target, const std::vector<fs::path>& inputs) {
+void check_target(const fs::path& target, const std::vector<fs::path>& inputs,
+                  const std::string& marker) {
   try {
     check_output_path(target, OutputKind::Directory, inputs);
   } catch (const OutputError& e) {
@@ -33,20 +32,20 @@ void check_target(const fs::path& target, const std::vector<fs::path>& inputs) {
   if (!fs::exists(fs::symlink_status(target, ec))) return;
   const bool empty = fs::is_empty(target, ec);
   if (ec) refuse(target, ec.message());
-  if (!empty && !fs::exists(target / kMarker)) {
-    refuse(target, "exists and holds no report.json: not a boxpile report, so it is left alone; "
+  if (!empty && !fs::exists(target / marker)) {
+    refuse(target, "exists and holds no " + marker + ": not a boxpile report, so it is left alone; "
                    "choose another directory");
   }
 }
 
 }  // namespace
 
-ReportDirectory::ReportDirectory(fs::path target, const std::vector<fs::path>& inputs)
-    : target_(std::move(target)) {
+ReportDirectory::ReportDirectory(fs::path target, const std::vector<fs::path>& inputs, std::string marker)
+    : target_(std::move(target)), marker_(std::move(marker)) {
   if (target_.empty()) refuse(target_, "no directory given");
   // "out/" names the directory "out": drop the trailing separator, so that its parent is found.
   if (!target_.has_filename()) target_ = target_.parent_path();
-  check_target(target_, inputs);
+  check_target(target_, inputs, marker_);
   fs::path parent;
   try {
     parent = prepare_parent(target_);
@@ -78,7 +77,7 @@ ReportDirectory::~ReportDirectory() {
 }
 
 void ReportDirectory::commit() {
-  check_target(target_, {});  // it may have changed during the run
+  check_target(target_, {}, marker_);  // it may have changed during the run
   std::error_code ec;
   if (!fs::exists(target_, ec)) {
     fs::rename(staging_, target_, ec);
@@ -104,6 +103,12 @@ void ReportDirectory::commit() {
   }
   committed_ = true;
   fs::remove_all(old, ec);
+}
+
+void write_report_file(const fs::path& file, std::string_view text) {
+  std::ofstream os(file);
+  os << text;
+  if (!os.flush()) throw std::runtime_error(file.string() + ": write failed");
 }
 
 }  // namespace boxpile

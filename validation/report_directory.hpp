@@ -7,9 +7,11 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <string_view>
 #include <vector>
 
-#include "validation/output_safety.hpp"
+#include "boxpile/validation/output_safety.hpp"
 
 namespace boxpile {
 
@@ -26,9 +28,10 @@ class ReportDirectory {
  public:
   // Checks `target` (check_output_path: no links, devices, FIFOs, sockets, nothing that holds one
   // of `inputs`) and creates the staging directory (and any missing parents of `target`). An
-  // existing `target` is accepted only if it is empty or holds a report.json (it will be
-  // replaced); anything else is refused rather than deleted.
-  explicit ReportDirectory(std::filesystem::path target, const std::vector<std::filesystem::path>& inputs = {});
+  // existing `target` is accepted only if it is empty or holds `marker`, the one file that marks
+  // a boxpile report (it will be replaced); anything else is refused rather than deleted.
+  explicit ReportDirectory(std::filesystem::path target, const std::vector<std::filesystem::path>& inputs = {},
+                           std::string marker = "report.json");
   ~ReportDirectory();
   ReportDirectory(const ReportDirectory&) = delete;
   ReportDirectory& operator=(const ReportDirectory&) = delete;
@@ -45,7 +48,12 @@ class ReportDirectory {
   std::filesystem::path target_;
   std::filesystem::path staging_;
   std::unique_ptr<StagedPath> registration_;
+  std::string marker_;
   bool committed_ = false;
 };
+
+// Writes one file of a report into its staging directory (ReportDirectory::staging()); the whole
+// directory is renamed into place by commit(). Throws std::runtime_error naming the file.
+void write_report_file(const std::filesystem::path& file, std::string_view text);
 
 }  // namespace boxpile

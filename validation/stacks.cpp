@@ -1,13 +1,13 @@
-#include "validation/stacks.hpp"
+#include "boxpile/validation/stacks.hpp"
 
 #include <algorithm>
 #include <limits>
 #include <numeric>
 
-#include "sim/collision/box.hpp"
-#include "sim/collision/box_plane.hpp"
-#include "sim/collision/broadphase.hpp"
-#include "sim/collision/collide.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
+#include "boxpile/sim/collision/broadphase.hpp"
+#include "boxpile/sim/collision/collide.hpp"
 
 namespace boxpile {
 namespace {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/engine.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "validation/state_meter.hpp"
+#include "boxpile/validation/state_meter.hpp"
 
 namespace boxpile {
 

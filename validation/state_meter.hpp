@@ -4,9 +4,9 @@
 
 #include <vector>
 
-#include "sim/engine.hpp"
-#include "sim/metrics.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/metrics.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "sim/engine.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/engine.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

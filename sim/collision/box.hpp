@@ -1,8 +1,8 @@
 // A box placed in the world, as the narrowphase sees it.
 #pragma once
 
-#include "sim/body.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 

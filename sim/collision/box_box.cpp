@@ -8,14 +8,14 @@
 // edge directions Ai x Bj. If s(L) > 0 for any L the boxes are apart; otherwise the axis with the
 // largest s (least penetration) is the contact normal and -s is the depth (Erleben's thesis,
 // sec. 9.1, pp. 178-183).
-#include "sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 
-#include "sim/collision/reduce.hpp"
+#include "boxpile/sim/collision/reduce.hpp"
 
 namespace boxpile {
 namespace {
@@ -35,6 +35,12 @@ constexpr double kFaceBiasAbsolute = 1e-6;  // times the largest half extent of 
 
 inline double sign_of(double x) { return x < 0.0 ? -1.0 : 1.0; }
 
+// Whether num / sqrt(len2) > bar, without the root (len2 > 0).
+inline bool exceeds(double num, double len2, double bar) {
+  if (bar >= 0.0) return num > 0.0 && num * num > bar * bar * len2;
+  return num >= 0.0 || num * num < bar * bar * len2;
+}
+
 // The separation along each face axis of A (k = 0..2) and B (k = 3..5) and each edge axis
 // (k = 6 + 3i + j for Ai x Bj), computed in A's frame.
 struct AxisTests {
@@ -44,12 +50,14 @@ struct AxisTests {
   Vec3 d;  // cB - cA in world
 };
 
-AxisTests prepare(const OrientedBox& a, const OrientedBox& b) {
+// Scalar dot products: Eigen's packet product of two 3x3 matrices costs more at this size.
+inline AxisTests prepare(const OrientedBox& a, const OrientedBox& b) {
   AxisTests at;
-  at.C = a.axes.transpose() * b.axes;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) at.C(i, j) = a.axes.col(i).dot(b.axes.col(j));
   at.absC = at.C.cwiseAbs();
   at.d = b.center - a.center;
-  at.t = a.axes.transpose() * at.d;
+  for (int i = 0; i < 3; ++i) at.t[i] = a.axes.col(i).dot(at.d);
   return at;
 }
 
@@ -96,70 +104,80 @@ void clip(const ClipPolygon& in, int axis, double sign, double h, int plane, Cli
   }
 }
 
-// Index of the axis (0..2) of `box` most (anti)parallel to u, with the sign of Bk . u.
-int most_aligned_axis(const OrientedBox& box, const Vec3& u) {
-  const Vec3 c = box.axes.transpose() * u;
-  int k = 0;
-  for (int i = 1; i < 3; ++i)
-    if (std::abs(c[i]) > std::abs(c[k])) k = i;
-  return k;
+// Clips `*cur` by the side plane sign * x[axis] <= h into `*spare` and swaps the two, or leaves
+// both alone when no point lies outside (the clip would copy the polygon and its tags unchanged).
+void clip_side(ClipPolygon*& cur, ClipPolygon*& spare, int axis, double sign, double h, int plane) {
+  bool any_outside = false;
+  for (int k = 0; k < cur->n; ++k) any_outside |= sign * cur->pts[k].p[axis] > h;
+  if (!any_outside) return;
+  clip(*cur, axis, sign, h, plane, *spare);
+  std::swap(cur, spare);
 }
 
 // Face contact: the reference face of `ref` (axis `ref_axis`, outward normal m pointing toward
-// `inc`) against the face of `inc` whose outward normal is most opposite to m. The incident face
-// is clipped to the reference face's side planes; clip points below the reference face plane
-// are contacts, depth = h_ref - m . p, placed midway between p and its projection p + depth m.
-void face_contacts(const OrientedBox& ref, const OrientedBox& inc, int ref_axis, const Vec3& m,
-                   bool ref_is_a, const CollisionSettings& settings, Manifold& out) {
-  const int ref_face = 2 * ref_axis + (m.dot(ref.axes.col(ref_axis)) < 0.0 ? 1 : 0);
+// `inc`) against the face of `inc` whose outward normal is most opposite to m. `cos_inc` holds
+// I_k . R_ref_axis for inc's axes I_k (a row or column of C, already computed by the test). The
+// incident face is clipped to the reference face's side planes; clip points below the reference
+// face plane are contacts, depth = h_ref - m . p, placed midway between p and its projection
+// p + depth m.
+void face_contacts(const OrientedBox& ref, const OrientedBox& inc, const Vec3& cos_inc, int ref_axis,
+                   const Vec3& m, bool ref_is_a, const CollisionSettings& settings, Manifold& out) {
+  // m = sgn * ref axis: the reference face is on the positive (sgn = 1) or negative side.
+  const double sgn = sign_of(m.dot(ref.axes.col(ref_axis)));
+  const int ref_face = 2 * ref_axis + (sgn < 0.0 ? 1 : 0);
 
-  // Incident face: outward normal s Bl with s = -sign(m . Bl), the face most opposite to m.
-  const int l = most_aligned_axis(inc, m);
-  const double s = -sign_of(m.dot(inc.axes.col(l)));
+  // Incident face: the axis l of inc most (anti)parallel to m, m . I_k = sgn cos_inc[k]; its
+  // outward normal s I_l with s = -sign(m . I_l), the face most opposite to m.
+  int l = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(cos_inc[k]) > std::abs(cos_inc[l])) l = k;
+  const double s = -sign_of(sgn * cos_inc[l]);
   const int inc_face = 2 * l + (s < 0.0 ? 1 : 0);
   const int p = (l + 1) % 3;
   const int q = (l + 2) % 3;
-  const Vec3 face_center = inc.center + s * inc.half[l] * inc.axes.col(l);
-  const Vec3 up = inc.half[p] * inc.axes.col(p);
-  const Vec3 uq = inc.half[q] * inc.axes.col(q);
 
-  // The reference frame: side axes u (x) and w (y), outward normal m (z), origin at ref's centre.
+  // The face frame: side axes u (x) and w (y) of ref, outward normal m (z), origin at ref's
+  // centre. The incident face's centre and half edges are mapped from world coordinates (the
+  // same numbers whichever box is the reference).
   const int ju = (ref_axis + 1) % 3;
   const int jw = (ref_axis + 2) % 3;
   Mat3 frame;  // rows: u, w, m
   frame.row(0) = ref.axes.col(ju).transpose();
   frame.row(1) = ref.axes.col(jw).transpose();
   frame.row(2) = m.transpose();
-  const Vec3 c = frame * (face_center - ref.center);
-  const Vec3 lp = frame * up;
-  const Vec3 lq = frame * uq;
+  const Vec3 c = frame * (inc.center + s * inc.half[l] * inc.axes.col(l) - ref.center);
+  const Vec3 lp = frame * (inc.half[p] * inc.axes.col(p));
+  const Vec3 lq = frame * (inc.half[q] * inc.axes.col(q));
 
   // Vertices counter-clockwise in (p, q): (+,+), (-,+), (-,-), (+,-); edge k runs k -> k+1.
-  ClipPolygon poly, scratch;
-  poly.n = 4;
-  poly.pts[0] = {c + lp + lq, 0, 0};
-  poly.pts[1] = {c - lp + lq, 1, 1};
-  poly.pts[2] = {c - lp - lq, 2, 2};
-  poly.pts[3] = {c + lp - lq, 3, 3};
+  ClipPolygon first, second;
+  ClipPolygon* poly = &first;
+  ClipPolygon* spare = &second;
+  poly->n = 4;
+  poly->pts[0] = {c + lp + lq, 0, 0};
+  poly->pts[1] = {c - lp + lq, 1, 1};
+  poly->pts[2] = {c - lp - lq, 2, 2};
+  poly->pts[3] = {c + lp - lq, 3, 3};
 
   // Side planes of the reference face, planes 0..3: x <= a_u, -x <= a_u, y <= a_w, -y <= a_w.
-  clip(poly, 0, 1.0, ref.half[ju], 0, scratch);
-  clip(scratch, 0, -1.0, ref.half[ju], 1, poly);
-  clip(poly, 1, 1.0, ref.half[jw], 2, scratch);
-  clip(scratch, 1, -1.0, ref.half[jw], 3, poly);
+  clip_side(poly, spare, 0, 1.0, ref.half[ju], 0);
+  clip_side(poly, spare, 0, -1.0, ref.half[ju], 1);
+  clip_side(poly, spare, 1, 1.0, ref.half[jw], 2);
+  clip_side(poly, spare, 1, -1.0, ref.half[jw], 3);
 
   const double h_ref = ref.half[ref_axis];
   const Vec3 normal = ref_is_a ? Vec3(-m) : m;  // from B toward A
   const FeatureKind kind = ref_is_a ? FeatureKind::FaceA : FeatureKind::FaceB;
-  for (int k = 0; k < poly.n; ++k) {
-    const ClipPoint& cp = poly.pts[k];
+  for (int k = 0; k < poly->n; ++k) {
+    const ClipPoint& cp = poly->pts[k];
     const double depth = h_ref - cp.p.z();
     if (depth < -settings.margin) continue;
     const FeatureId id = ref_is_a ? FeatureId::make(kind, ref_face, inc_face, cp.sub)
                                   : FeatureId::make(kind, inc_face, ref_face, cp.sub);
     // Midway between the point (height z) and its projection on the face (height h_ref).
     const Vec3 local(cp.p.x(), cp.p.y(), cp.p.z() + 0.5 * depth);
-    out.push_back({ref.center + frame.transpose() * local, normal, depth, id});
+    const Vec3 position = ref.center + frame.transpose() * local;
+    out.push_back({position, normal, depth, id});
   }
 }
 
@@ -199,80 +217,108 @@ Edge extreme_edge(const OrientedBox& box, int i, const Vec3& e) {
 
 }  // namespace
 
-SatResult box_box_sat(const OrientedBox& a, const OrientedBox& b, double stop_above) {
-  const AxisTests at = prepare(a, b);
+namespace {
+
+SatResult separating_axis_test(const OrientedBox& a, const OrientedBox& b, const AxisTests& at,
+                               double stop_above) {
   const Mat3& C = at.C;
   const Mat3& absC = at.absC;
   const Vec3& t = at.t;
 
-  SatResult face;
-  face.separation = -std::numeric_limits<double>::infinity();
-  // A's face axes: s = |t_i| - (a_i + sum_j b_j |C_ij|).
+  // Face axes, k = 0..2 for A's and 3..5 for B's; offset[k] is (cB - cA) along the axis.
+  //   A's: s = |t_i| - (a_i + sum_j b_j |C_ij|);  B's: s = |d . Bj| - (b_j + sum_i a_i |C_ij|).
+  std::array<double, 6> offset, face_sep;
   for (int i = 0; i < 3; ++i) {
-    const double sep = std::abs(t[i]) - (a.half[i] + absC.row(i).dot(b.half));
-    if (sep > face.separation) {
-      face = {sep, -sign_of(t[i]) * a.axes.col(i), FeatureKind::FaceA, i, 0};
-      if (sep > stop_above) return face;
-    }
+    offset[i] = t[i];
+    face_sep[i] = std::abs(t[i]) - (a.half[i] + absC.row(i).dot(b.half));
   }
-  // B's face axes: s = |d . Bj| - (b_j + sum_i a_i |C_ij|).
   for (int j = 0; j < 3; ++j) {
-    const double dj = at.d.dot(b.axes.col(j));
-    const double sep = std::abs(dj) - (b.half[j] + absC.col(j).dot(a.half));
-    if (sep > face.separation) {
-      face = {sep, -sign_of(dj) * b.axes.col(j), FeatureKind::FaceB, 0, j};
-      if (sep > stop_above) return face;
+    offset[3 + j] = at.d.dot(b.axes.col(j));
+    face_sep[3 + j] = std::abs(offset[3 + j]) - (b.half[j] + absC.col(j).dot(a.half));
+  }
+  int best_face = 0;
+  for (int k = 1; k < 6 && !(face_sep[best_face] > stop_above); ++k)
+    if (face_sep[k] > face_sep[best_face]) best_face = k;
+  SatResult face;
+  face.separation = face_sep[best_face];
+  if (best_face < 3) {
+    face.normal = -sign_of(offset[best_face]) * a.axes.col(best_face);
+    face.kind = FeatureKind::FaceA;
+    face.axis_a = best_face;
+  } else {
+    face.normal = -sign_of(offset[best_face]) * b.axes.col(best_face - 3);
+    face.kind = FeatureKind::FaceB;
+    face.axis_b = best_face - 3;
+  }
+  if (face.separation > stop_above) return face;
+
+  // Edge axes L = Ai x Bj, k = 3i + j. In A's frame L = e_i x C_j, so with i1 = i+1, i2 = i+2
+  // (mod 3):
+  //   |L| = sqrt(C_i1j^2 + C_i2j^2),  (cB - cA) . L = t_i2 C_i1j - t_i1 C_i2j,
+  //   rA = a_i1 |C_i2j| + a_i2 |C_i1j|,  rB = b_j1 |C_ij2| + b_j2 |C_ij1|.
+  // All nine numerators num = |(cB - cA) . L| - rA - rB and squared lengths first, without a
+  // branch, unrolled so that every index is a constant; then the scan below.
+  std::array<double, 9> dl, num, len2;
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+#pragma GCC unroll 3
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const int k = 3 * i + j;
+      len2[k] = C(i1, j) * C(i1, j) + C(i2, j) * C(i2, j);
+      dl[k] = t[i2] * C(i1, j) - t[i1] * C(i2, j);
+      const double ra = a.half[i1] * absC(i2, j) + a.half[i2] * absC(i1, j);
+      const double rb = b.half[j1] * absC(i, j2) + b.half[j2] * absC(i, j1);
+      num[k] = std::abs(dl[k]) - ra - rb;
     }
   }
 
-  // Edge axes L = Ai x Bj. In A's frame L = e_i x C_j, so with i1 = i+1, i2 = i+2 (mod 3):
-  //   |L| = sqrt(C_i1j^2 + C_i2j^2),  (cB - cA) . L = t_i2 C_i1j - t_i1 C_i2j,
-  //   rA = a_i1 |C_i2j| + a_i2 |C_i1j|,  rB = b_j1 |C_ij2| + b_j2 |C_ij1|.
+  // An edge axis matters only if it separates more than the face axis plus the face bias (it
+  // then wins) or more than `stop_above` (the test stops): the root and the division are taken
+  // only for axes that beat that bar, found by comparing squares (num / |L| > bar).
+  const double scale = std::max(a.half.maxCoeff(), b.half.maxCoeff());
+  const double bias = kFaceBiasRelative * std::abs(face.separation) + kFaceBiasAbsolute * scale;
+  const double edge_bar = std::min(face.separation + bias, stop_above);
   double edge_sep = -std::numeric_limits<double>::infinity();
-  int edge_i = 0, edge_j = 0;
-  double edge_len = 1.0, edge_sign = 1.0;
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      // |C| <= 1, so the plain root cannot overflow (std::hypot's care costs twice the time).
-      const double len = std::sqrt(C(i1, j) * C(i1, j) + C(i2, j) * C(i2, j));
-      if (len < kParallelEdgeSin) continue;
-      const double dl = t[i2] * C(i1, j) - t[i1] * C(i2, j);
-      const double ra = a.half[i1] * absC(i2, j) + a.half[i2] * absC(i1, j);
-      const double rb = b.half[j1] * absC(i, j2) + b.half[j2] * absC(i, j1);
-      const double sep = (std::abs(dl) - ra - rb) / len;
-      if (sep > edge_sep) {
-        edge_sep = sep;
-        edge_i = i;
-        edge_j = j;
-        edge_len = len;
-        edge_sign = -sign_of(dl);
-        if (sep > stop_above) break;
-      }
-    }
+  int edge_k = -1;
+  double edge_len = 1.0;
+  for (int k = 0; k < 9; ++k) {
+    if (len2[k] < kParallelEdgeSin * kParallelEdgeSin) continue;
+    if (!exceeds(num[k], len2[k], std::max(edge_bar, edge_sep))) continue;
+    // |C| <= 1, so the plain root cannot overflow (std::hypot's care costs twice the time).
+    edge_len = std::sqrt(len2[k]);
+    edge_sep = num[k] / edge_len;
+    edge_k = k;
     if (edge_sep > stop_above) break;
   }
 
-  const double scale = std::max(a.half.maxCoeff(), b.half.maxCoeff());
-  const double bias = kFaceBiasRelative * std::abs(face.separation) + kFaceBiasAbsolute * scale;
   if (!(edge_sep > face.separation + bias)) return face;
+  const int edge_i = edge_k / 3, edge_j = edge_k % 3;
   const Vec3 axis = a.axes.col(edge_i).cross(b.axes.col(edge_j)) / edge_len;
-  return {edge_sep, edge_sign * axis, FeatureKind::EdgeEdge, edge_i, edge_j};
+  return {edge_sep, -sign_of(dl[edge_k]) * axis, FeatureKind::EdgeEdge, edge_i, edge_j};
+}
+
+}  // namespace
+
+SatResult box_box_sat(const OrientedBox& a, const OrientedBox& b, double stop_above) {
+  return separating_axis_test(a, b, prepare(a, b), stop_above);
 }
 
 void collide_box_box(const OrientedBox& a, const OrientedBox& b, const CollisionSettings& settings,
                      Manifold& out) {
   out.clear();
-  const SatResult sat = box_box_sat(a, b, settings.margin);
+  const AxisTests at = prepare(a, b);
+  const SatResult sat = separating_axis_test(a, b, at, settings.margin);
   if (sat.separation > settings.margin) return;
 
   switch (sat.kind) {
     case FeatureKind::FaceA:
-      face_contacts(a, b, sat.axis_a, -sat.normal, /*ref_is_a=*/true, settings, out);
+      face_contacts(a, b, at.C.row(sat.axis_a).transpose(), sat.axis_a, -sat.normal, /*ref_is_a=*/true,
+                    settings, out);
       break;
     case FeatureKind::FaceB:
-      face_contacts(b, a, sat.axis_b, sat.normal, /*ref_is_a=*/false, settings, out);
+      face_contacts(b, a, at.C.col(sat.axis_b), sat.axis_b, sat.normal, /*ref_is_a=*/false, settings, out);
       break;
     case FeatureKind::EdgeEdge: {
       // A's edge along Ai extreme toward B (along -n), B's edge along Bj extreme toward A (+n).

@@ -4,9 +4,9 @@
 
 #include <limits>
 
-#include "sim/collision/box.hpp"
-#include "sim/collision/contact.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

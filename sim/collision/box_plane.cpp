@@ -1,4 +1,4 @@
-#include "sim/collision/box_plane.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
 
 namespace boxpile {
 

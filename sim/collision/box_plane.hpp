@@ -1,9 +1,9 @@
 // Box against a half-space of any normal: every vertex below the plane is a contact.
 #pragma once
 
-#include "sim/collision/box.hpp"
-#include "sim/collision/contact.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

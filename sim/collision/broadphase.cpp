@@ -1,4 +1,4 @@
-#include "sim/collision/broadphase.hpp"
+#include "boxpile/sim/collision/broadphase.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -19,6 +19,12 @@ Aabb body_aabb(const RigidBody& body, double margin) {
   box.lo.array() -= margin;
   box.hi.array() += margin;
   return box;
+}
+
+void SweepAndPrune::reserve(const StepStorage& storage) {
+  boxes_.reserve(storage.bodies);
+  order_.reserve(storage.bodies);
+  pairs_.reserve(storage.pairs());
 }
 
 const std::vector<std::pair<int, int>>& SweepAndPrune::find_pairs(const std::vector<RigidBody>& bodies,

@@ -5,7 +5,8 @@
 #include <utility>
 #include <vector>
 
-#include "sim/body.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/step_storage.hpp"
 
 namespace boxpile {
 
@@ -26,6 +27,8 @@ Aabb body_aabb(const RigidBody& body, double margin);
 // once the first call has sized it.
 class SweepAndPrune {
  public:
+  // Sizes the storage for `storage.bodies` bodies and their expected pairs.
+  void reserve(const StepStorage& storage);
   // The pairs (i < j) of bodies whose boxes overlap, each box grown by its body's margin
   // (margins[i], m), skipping pairs of two fixed bodies.
   const std::vector<std::pair<int, int>>& find_pairs(const std::vector<RigidBody>& bodies,

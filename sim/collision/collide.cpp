@@ -1,10 +1,10 @@
-#include "sim/collision/collide.hpp"
+#include "boxpile/sim/collision/collide.hpp"
 
 #include <algorithm>
 #include <limits>
 
-#include "sim/collision/box_box.hpp"
-#include "sim/collision/box_plane.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
 
 namespace boxpile {
 namespace {
@@ -19,28 +19,40 @@ void append(const Manifold& m, int ia, int ib, int sa, int sb, std::vector<BodyC
 
 }  // namespace
 
-void collide_bodies(const std::vector<RigidBody>& bodies, int ia, int ib,
-                    const CollisionSettings& settings, std::vector<BodyContact>& out) {
-  const RigidBody& a = bodies[ia];
-  const RigidBody& b = bodies[ib];
+PlacedBoxes::PlacedBoxes(const std::vector<RigidBody>& bodies) {
+  first_.reserve(bodies.size() + 1);
+  first_.push_back(0);
+  for (const RigidBody& b : bodies) first_.push_back(first_.back() + static_cast<int>(b.shapes.size()));
+  boxes_.resize(static_cast<std::size_t>(first_.back()));
+}
+
+void PlacedBoxes::place(const std::vector<RigidBody>& bodies) {
+  for (int i = 0; i < static_cast<int>(bodies.size()); ++i)
+    for (int k = 0; k < static_cast<int>(bodies[i].shapes.size()); ++k)
+      boxes_[static_cast<std::size_t>(first_[i] + k)] = world_box(bodies[i], k);
+}
+
+void collide_bodies(const PlacedBoxes& boxes, int ia, int ib, const CollisionSettings& settings,
+                    std::vector<BodyContact>& out) {
+  const std::span<const OrientedBox> a = boxes.of(ia);
+  const std::span<const OrientedBox> b = boxes.of(ib);
   Manifold m;
-  for (int sa = 0; sa < static_cast<int>(a.shapes.size()); ++sa) {
-    const OrientedBox box_a = world_box(a, sa);
-    for (int sb = 0; sb < static_cast<int>(b.shapes.size()); ++sb) {
+  for (int sa = 0; sa < static_cast<int>(a.size()); ++sa) {
+    for (int sb = 0; sb < static_cast<int>(b.size()); ++sb) {
       m.clear();
-      collide_box_box(box_a, world_box(b, sb), settings, m);
+      collide_box_box(a[sa], b[sb], settings, m);
       append(m, ia, ib, sa, sb, out);
     }
   }
 }
 
-void collide_body_ground(const std::vector<RigidBody>& bodies, int ia, const HalfSpace& ground,
+void collide_body_ground(const PlacedBoxes& boxes, int ia, const HalfSpace& ground,
                          const CollisionSettings& settings, std::vector<BodyContact>& out) {
-  const RigidBody& a = bodies[ia];
+  const std::span<const OrientedBox> a = boxes.of(ia);
   Manifold m;
-  for (int sa = 0; sa < static_cast<int>(a.shapes.size()); ++sa) {
+  for (int sa = 0; sa < static_cast<int>(a.size()); ++sa) {
     m.clear();
-    collide_box_plane(world_box(a, sa), ground, settings.margin, m);
+    collide_box_plane(a[sa], ground, settings.margin, m);
     append(m, ia, kGround, sa, 0, out);
   }
 }

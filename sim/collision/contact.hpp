@@ -11,7 +11,7 @@
 #include <cassert>
 #include <cstdint>
 
-#include "sim/math.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "sim/collision/reduce.hpp"
+#include "boxpile/sim/collision/reduce.hpp"
 
 #include <algorithm>
 #include <array>

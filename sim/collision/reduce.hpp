@@ -1,7 +1,7 @@
 // Reducing a manifold to at most four points that keep its support area.
 #pragma once
 
-#include "sim/collision/contact.hpp"
+#include "boxpile/sim/collision/contact.hpp"
 
 namespace boxpile {
 

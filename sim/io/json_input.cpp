@@ -1,4 +1,4 @@
-#include "sim/io/json_input.hpp"
+#include "boxpile/sim/io/json_input.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -11,7 +11,7 @@
 #include <memory>
 #include <vector>
 
-#include "sim/limits.hpp"
+#include "boxpile/sim/limits.hpp"
 
 namespace boxpile::json_input {
 namespace {
@@ -484,14 +484,14 @@ Vec3 read_bounded_vector(const JsonNode& node, double max_norm, std::string_view
   return v;
 }
 
-Vec3 read_half_extents(const JsonNode& node) {
+Vec3 read_half_extents(const JsonNode& node, double min_half_extent) {
   node.expect_array_size(3);
   Vec3 h;
   for (int i = 0; i < 3; ++i) {
     const JsonNode c = node.element(static_cast<std::size_t>(i));
     h[i] = read_positive(c);
-    if (h[i] < limits::kMinHalfExtent || h[i] > limits::kMaxHalfExtent) {
-      c.fail("must be in [" + format_number(limits::kMinHalfExtent) + ", " + format_number(limits::kMaxHalfExtent) +
+    if (h[i] < min_half_extent || h[i] > limits::kMaxHalfExtent) {
+      c.fail("must be in [" + format_number(min_half_extent) + ", " + format_number(limits::kMaxHalfExtent) +
              "] m, got " + format_number(h[i]));
     }
   }

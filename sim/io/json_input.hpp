@@ -14,9 +14,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/io/input_error.hpp"
-#include "sim/math.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/limits.hpp"
+#include "boxpile/sim/math.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile::json_input {
 
@@ -108,9 +109,9 @@ Vec3 read_vec3(const JsonNode& node, double max_component);
 Vec3 read_vec3(const JsonNode& node);
 // [x, y, z] whose norm is at most `max_norm` (a velocity, gravity); `unit` for the message.
 Vec3 read_bounded_vector(const JsonNode& node, double max_norm, std::string_view unit);
-// [x, y, z], each in [kMinHalfExtent, kMaxHalfExtent] (box half extents); the error names the
-// offending component.
-Vec3 read_half_extents(const JsonNode& node);
+// [x, y, z], each in [min_half_extent, kMaxHalfExtent] (box half extents; the default minimum is
+// a simulated box's, kMinHalfExtent); the error names the offending component.
+Vec3 read_half_extents(const JsonNode& node, double min_half_extent = limits::kMinHalfExtent);
 // [w, x, y, z], normalised; a zero quaternion is an error.
 Quat read_orientation(const JsonNode& node);
 // [x, y, z], normalised; a zero vector is an error.

@@ -1,6 +1,6 @@
-#include "sim/io/scene_loader.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
 
-#include "sim/solver/step_context.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
 
 #include <algorithm>
 #include <array>
@@ -10,13 +10,13 @@
 #include <unordered_map>
 #include <vector>
 
-#include "sim/collision/box.hpp"
-#include "sim/collision/box_plane.hpp"
-#include "sim/collision/broadphase.hpp"
-#include "sim/collision/collide.hpp"
-#include "sim/io/json_input.hpp"
-#include "sim/solver/penalty_parameters.hpp"
-#include "sim/time_steps.hpp"
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
+#include "boxpile/sim/collision/broadphase.hpp"
+#include "boxpile/sim/collision/collide.hpp"
+#include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/sim/solver/penalty_parameters.hpp"
+#include "boxpile/sim/time_steps.hpp"
 
 namespace boxpile {
 namespace {

@@ -5,9 +5,9 @@
 #include <cstddef>
 #include <string>
 
-#include "sim/io/input_error.hpp"
-#include "sim/limits.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/limits.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

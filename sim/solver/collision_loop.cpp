@@ -1,16 +1,9 @@
-#include "sim/solver/collision_loop.hpp"
+#include "boxpile/sim/solver/collision_loop.hpp"
 
 #include <algorithm>
 #include <cassert>
 
 namespace boxpile {
-
-namespace {
-// An approach faster than this counts as a collision event: well above the |g| dt that gravity
-// adds to a resting contact in one step, and above rounding.
-constexpr double kEventSpeedMin = 0.01;  // m/s
-constexpr double kEventSpeedGravitySteps = 2.0;
-}  // namespace
 
 void collision_loop(ImpulseStep& step) {
   SolverBodies& sb = step.sb;
@@ -21,7 +14,7 @@ void collision_loop(ImpulseStep& step) {
   const bool friction = scene.effects.friction;
   const double time = step.world.time;
   const double dt = step.world.dt;
-  const double event_speed = std::max(kEventSpeedMin, kEventSpeedGravitySteps * scene.gravity.norm() * dt);
+  const double event_speed = collision_event_speed(scene, dt);
   ImpulseCounters& counters = step.world.counters.impulses;
   StepStats& stats = step.world.stats;
   std::vector<CollisionEvent>& events = step.world.events;

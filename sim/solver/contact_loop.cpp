@@ -1,4 +1,4 @@
-#include "sim/solver/contact_loop.hpp"
+#include "boxpile/sim/solver/contact_loop.hpp"
 
 #include <algorithm>
 #include <cassert>

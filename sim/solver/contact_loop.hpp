@@ -1,7 +1,7 @@
 // The contact loop of the Guendelman-Bridson-Fedkiw step (sec. 6 of the paper).
 #pragma once
 
-#include "sim/solver/impulse_step.hpp"
+#include "boxpile/sim/solver/impulse_step.hpp"
 
 namespace boxpile {
 

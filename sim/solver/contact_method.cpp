@@ -1,9 +1,9 @@
-#include "sim/solver/contact_method.hpp"
+#include "boxpile/sim/solver/contact_method.hpp"
 
 #include <stdexcept>
 
-#include "sim/solver/impulse_method.hpp"
-#include "sim/solver/penalty_method.hpp"
+#include "boxpile/sim/solver/impulse_method.hpp"
+#include "boxpile/sim/solver/penalty_method.hpp"
 
 namespace boxpile {
 

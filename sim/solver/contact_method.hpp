@@ -7,9 +7,9 @@
 #include <memory>
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/scene.hpp"
-#include "sim/solver/step_context.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/scene.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "sim/solver/friction_anchors.hpp"
+#include "boxpile/sim/solver/friction_anchors.hpp"
 
 #include <algorithm>
 

@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "sim/collision/collide.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/collision/collide.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 

@@ -1,4 +1,4 @@
-#include "sim/solver/impulse.hpp"
+#include "boxpile/sim/solver/impulse.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -16,8 +16,8 @@
 
 #include <cstdint>
 
-#include "sim/body.hpp"
-#include "sim/math.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 

@@ -1,15 +1,18 @@
-#include "sim/solver/impulse_method.hpp"
+#include "boxpile/sim/solver/impulse_method.hpp"
 
-#include "sim/solver/collision_loop.hpp"
-#include "sim/solver/contact_loop.hpp"
-#include "sim/solver/integrate.hpp"
+#include "boxpile/sim/solver/collision_loop.hpp"
+#include "boxpile/sim/solver/contact_loop.hpp"
+#include "boxpile/sim/solver/integrate.hpp"
 
 namespace boxpile {
 
 ImpulseMethod::ImpulseMethod(std::size_t body_count) {
   start_v_.resize(body_count);
   start_omega_.resize(body_count);
-  solver_contacts_.reserve(8 * body_count);
+  const StepStorage storage{body_count};
+  solver_contacts_.reserve(storage.contacts());
+  shock_.reserve(storage);
+  recovery_.reserve(storage);
 }
 
 void ImpulseMethod::step(StepContext& ctx) {

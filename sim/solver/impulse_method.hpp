@@ -4,10 +4,11 @@
 
 #include <vector>
 
-#include "sim/solver/contact_method.hpp"
-#include "sim/solver/impulse.hpp"
-#include "sim/solver/recovery.hpp"
-#include "sim/solver/shock_propagation.hpp"
+#include "boxpile/sim/solver/contact_method.hpp"
+#include "boxpile/sim/solver/impulse.hpp"
+#include "boxpile/sim/solver/recovery.hpp"
+#include "boxpile/sim/solver/shock_propagation.hpp"
+#include "boxpile/sim/step_storage.hpp"
 
 namespace boxpile {
 

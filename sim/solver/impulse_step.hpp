@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/solver/impulse.hpp"
-#include "sim/solver/step_context.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/solver/impulse.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
 
 namespace boxpile {
 

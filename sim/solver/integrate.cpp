@@ -1,4 +1,4 @@
-#include "sim/solver/integrate.hpp"
+#include "boxpile/sim/solver/integrate.hpp"
 
 #include <cmath>
 

@@ -2,8 +2,8 @@
 // update of one body from the velocities a method chooses.
 #pragma once
 
-#include "sim/body.hpp"
-#include "sim/solver/step_context.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
 
 namespace boxpile {
 

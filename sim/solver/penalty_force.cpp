@@ -1,4 +1,4 @@
-#include "sim/solver/penalty_force.hpp"
+#include "boxpile/sim/solver/penalty_force.hpp"
 
 #include <algorithm>
 

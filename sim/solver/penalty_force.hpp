@@ -12,7 +12,7 @@
 // dragged no farther, pulls less than mu_d f_n.
 #pragma once
 
-#include "sim/math.hpp"
+#include "boxpile/sim/math.hpp"
 
 namespace boxpile {
 

@@ -1,7 +1,7 @@
-#include "sim/solver/penalty_method.hpp"
+#include "boxpile/sim/solver/penalty_method.hpp"
 
-#include "sim/solver/integrate.hpp"
-#include "sim/solver/penalty_force.hpp"
+#include "boxpile/sim/solver/integrate.hpp"
+#include "boxpile/sim/solver/penalty_force.hpp"
 
 namespace boxpile {
 

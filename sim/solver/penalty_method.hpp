@@ -6,9 +6,9 @@
 
 #include <vector>
 
-#include "sim/solver/contact_method.hpp"
-#include "sim/solver/friction_anchors.hpp"
-#include "sim/solver/penalty_parameters.hpp"
+#include "boxpile/sim/solver/contact_method.hpp"
+#include "boxpile/sim/solver/friction_anchors.hpp"
+#include "boxpile/sim/solver/penalty_parameters.hpp"
 
 namespace boxpile {
 

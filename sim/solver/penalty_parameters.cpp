@@ -1,4 +1,4 @@
-#include "sim/solver/penalty_parameters.hpp"
+#include "boxpile/sim/solver/penalty_parameters.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -13,7 +13,7 @@
 #include <optional>
 #include <string>
 
-#include "sim/scene.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

@@ -1,8 +1,14 @@
-#include "sim/solver/recovery.hpp"
+#include "boxpile/sim/solver/recovery.hpp"
 
 #include <algorithm>
 
 namespace boxpile {
+
+void PenetrationRecovery::reserve(const StepStorage& storage) {
+  pseudo_v_.reserve(storage.bodies);
+  pseudo_omega_.reserve(storage.bodies);
+  lambda_.reserve(storage.contacts());
+}
 
 void PenetrationRecovery::run(const ImpulseStep& step) {
   const SolverBodies& sb = step.sb;

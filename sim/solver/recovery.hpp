@@ -7,12 +7,15 @@
 
 #include <vector>
 
-#include "sim/solver/impulse_step.hpp"
+#include "boxpile/sim/solver/impulse_step.hpp"
+#include "boxpile/sim/step_storage.hpp"
 
 namespace boxpile {
 
 class PenetrationRecovery {
  public:
+  // Sizes the pseudo-velocities and the pseudo-impulses for `storage`.
+  void reserve(const StepStorage& storage);
   // Solves, in `recovery_passes` sequential passes over the contacts deeper than
   // `penetration_slop`, for normal pseudo-impulses lambda >= 0 that give each point the
   // separating pseudo-velocity beta (depth - slop) / dt, beta = `penetration_recovery`. Fills

@@ -1,4 +1,4 @@
-#include "sim/solver/shock_propagation.hpp"
+#include "boxpile/sim/solver/shock_propagation.hpp"
 
 #include <algorithm>
 
@@ -15,6 +15,17 @@ double approach_residual(const SolverBodies& sb, const std::vector<SolverContact
   for (const SolverContact& c : contacts)
     worst = std::max(worst, allow_gap(c, 0.0, dt) - c.n.dot(sb.relative_velocity(c)));
   return worst;
+}
+
+void ShockPropagation::reserve(const StepStorage& storage) {
+  // Per body (levels and the queue hold at most one entry per body, plus the level ends), and
+  // per contact (each contact between two bodies is two adjacency entries).
+  level_.reserve(storage.bodies);
+  queue_.reserve(storage.bodies + 1);
+  adjacency_start_.reserve(storage.bodies + 1);
+  level_start_.reserve(storage.bodies + 2);
+  adjacency_.reserve(2 * storage.contacts());
+  by_level_.reserve(storage.contacts());
 }
 
 void ShockPropagation::run(ImpulseStep& step) {

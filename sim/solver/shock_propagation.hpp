@@ -3,7 +3,8 @@
 
 #include <vector>
 
-#include "sim/solver/impulse_step.hpp"
+#include "boxpile/sim/solver/impulse_step.hpp"
+#include "boxpile/sim/step_storage.hpp"
 
 namespace boxpile {
 
@@ -13,6 +14,8 @@ namespace boxpile {
 // lower level frozen (infinite mass).
 class ShockPropagation {
  public:
+  // Sizes the graph, the levels and the queue for `storage.bodies` bodies and their contacts.
+  void reserve(const StepStorage& storage);
   void run(ImpulseStep& step);
   // Level of each body in the last run (-1: fixed; kUnsupported: not connected to the ground).
   const std::vector<int>& levels() const { return level_; }

@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/collision/collide.hpp"
-#include "sim/scene.hpp"
-#include "sim/solver/impulse.hpp"
-#include "sim/solver/wire.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/collision/collide.hpp"
+#include "boxpile/sim/scene.hpp"
+#include "boxpile/sim/solver/impulse.hpp"
+#include "boxpile/sim/solver/wire.hpp"
 
 namespace boxpile {
 

@@ -1,8 +1,8 @@
-#include "sim/solver/wire.hpp"
+#include "boxpile/sim/solver/wire.hpp"
 
 #include <algorithm>
 
-#include "sim/solver/impulse.hpp"
+#include "boxpile/sim/solver/impulse.hpp"
 
 namespace boxpile {
 

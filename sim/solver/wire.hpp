@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "sim/body.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/body.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 

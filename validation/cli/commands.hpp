@@ -1,13 +1,14 @@
 // The boxpile subcommands. Each registers its options on the CLI11 app and returns the exit code.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
-#include "validation/cli/run_limits.hpp"
+#include "boxpile/validation/cli/run_limits.hpp"
 
 namespace boxpile::cli {
 
@@ -22,15 +23,38 @@ inline constexpr const char* kExitCodesHelp =
     "Exit codes: 0 success; 1 a run that went wrong (a non-finite state, an engine failing); 2 bad input "
     "(scene, query, flag, unusable output location, an error inside ODE); 130 interrupted.";
 
-// `boxpile contacts QUERY.json [--reduce] [--engines LIST]`: the contact sets of one query from
-// our detector and the reference engines, with a diff of each reference against ours, on stdout.
+// `boxpile contacts QUERY.json [--reduce] [--engines LIST] [--format table|json]`: the contact
+// sets of one query from the registered detectors (and any answers saved in the file), with a
+// diff of each against ours; a table on a terminal, JSON when piped or asked.
+// `boxpile contacts --serve [--engine NAME]`: the line protocol of `boxpile conform` on stdin and
+// stdout, answered by one detector.
 struct ContactsOptions {
   std::string query;
   bool reduce = false;
   std::vector<std::string> engines;  // empty: the default set
+  std::string format;                // "table" or "json"; empty: table on a terminal
+  bool serve = false;
+  std::string engine = "own";        // the detector that answers under --serve
 };
 void add_contacts_command(CLI::App& app, ContactsOptions& options);
 int run_contacts(const ContactsOptions& options);
+
+// `boxpile conform --collider CMD [--samples N] [--seed S] [--cases DIR] [--regimes LIST]
+// [--timeout S] --report DIR`: judges an outside collider through the line protocol
+// (docs/conform.md). Exit 0 within the gates, 1 not, 2 on bad input or a collider that dies,
+// hangs or answers garbage.
+struct ConformOptions {
+  std::string collider;
+  int samples = 1000;
+  std::uint64_t seed = 1;
+  std::string cases;                 // empty: the installed fixtures/contacts; "none": no cases
+  std::vector<std::string> regimes;  // empty: all
+  double timeout = 10.0;             // s per answer
+  bool no_swap = false;
+  std::string report;
+};
+void add_conform_command(CLI::App& app, ConformOptions& options);
+int run_conform_command(const ConformOptions& options);
 
 // `boxpile run SCENE.json --engine NAME [--dt DT] [--duration T] [--every K] [--out FILE.json]`:
 // steps the scene in one engine; writes the recorded frames to FILE.json, or prints a summary.
@@ -62,6 +86,15 @@ struct CompareOptions {
 };
 void add_compare_command(CLI::App& app, CompareOptions& options);
 int run_compare_command(const CompareOptions& options);
+// `boxpile view RUN.json|DIR [--out FILE]`: writes a replay page for a run file or a report
+// directory (docs/viewer.md).
+struct ViewOptions {
+  std::string input;
+  std::string out;  // empty: beside the input
+};
+void add_view_command(CLI::App& app, ViewOptions& options);
+int run_view(const ViewOptions& options);
+
 // The scene and report directory of `boxpile` with no command.
 CompareOptions default_compare_options();
 

@@ -2,22 +2,23 @@
 #include <filesystem>
 #include <iostream>
 
-#include "sim/io/scene_loader.hpp"
-#include "sim/time_steps.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/cli/progress.hpp"
-#include "validation/compare.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/output_safety.hpp"
-#include "validation/report.hpp"
-#include "validation/report_directory.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/time_steps.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/progress.hpp"
+#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/data_directory.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/output_safety.hpp"
+#include "boxpile/validation/report.hpp"
+#include "boxpile/validation/report_directory.hpp"
 
 namespace boxpile::cli {
 
 // The main job: both of our contact methods beside the two references, on the bone scene.
 CompareOptions default_compare_options() {
   CompareOptions o;
-  o.scene = BOXPILE_DEFAULT_SCENE;
+  o.scene = data_path("fixtures/scenes/bone_hits_pile.json").string();
   o.engines = {"own-impulse", "own-penalty", "ode", "bullet"};
   return o;
 }

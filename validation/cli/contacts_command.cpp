@@ -1,58 +1,68 @@
+#include <unistd.h>
+
 #include <algorithm>
+#include <array>
+#include <cstdio>
 #include <iostream>
 #include <string_view>
 #include <vector>
 
-#include "reference/reference_contacts.hpp"
-#include "sim/collision/box_box.hpp"
-#include "sim/collision/box_plane.hpp"
-#include "sim/io/query_loader.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/cli/json_output.hpp"
-#include "validation/contact_diff.hpp"
+#include "boxpile/sim/io/query_loader.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/json_output.hpp"
+#include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/detectors.hpp"
 
 namespace boxpile::cli {
 namespace {
 
-// The detectors `contacts` can show. "bullet_multipoint" is Bullet with
-// setPlaneConvexMultipointIterations(3, 3): it differs from "bullet" on box-plane queries only.
-constexpr std::string_view kOwn = "own";
+constexpr std::string_view kOwn = kOwnDetector;
 // own-impulse and own-penalty name our engine with a forced contact method; the contact set is the
 // same for both, so they are "own" here.
-const std::vector<std::string> kDetectors = {"own", "own-impulse", "own-penalty", "ode", "bullet",
-                                             "bullet_multipoint"};
+constexpr std::array<std::string_view, 2> kOwnAliases = {"own-impulse", "own-penalty"};
 
 std::string detector_of(const std::string& name) {
-  return name == "own-impulse" || name == "own-penalty" ? std::string(kOwn) : name;
+  const bool alias = std::find(kOwnAliases.begin(), kOwnAliases.end(), name) != kOwnAliases.end();
+  return alias ? std::string(kOwn) : name;
+}
+constexpr const char* kTable = "table";
+constexpr const char* kJson = "json";
+
+DetectOptions detect_options(const ContactsOptions& options) {
+  DetectOptions d;
+  d.own.reduce_to_four = options.reduce;
+  return d;
 }
 
-Manifold detect(std::string_view name, const ContactQuery& query, bool reduce) {
-  const OrientedBox a = OrientedBox::from(query.a.pose, query.a.half_extents);
-  Manifold m;
-  if (query.b) {
-    const OrientedBox b = OrientedBox::from(query.b->pose, query.b->half_extents);
-    if (name == kOwn) {
-      CollisionSettings settings;
-      settings.reduce_to_four = reduce;
-      collide_box_box(a, b, settings, m);
-    } else if (name == "ode") {
-      m = ode_box_box(a, b);
-    } else {
-      m = bullet_box_box(a, b);
-    }
-  } else {
-    const HalfSpace& plane = *query.plane;
-    if (name == kOwn) {
-      collide_box_plane(a, plane, 0.0, m);
-    } else if (name == "ode") {
-      m = ode_box_plane(a, plane);
-    } else if (name == "bullet") {
-      m = bullet_box_plane(a, plane);
-    } else {
-      m = bullet_box_plane(a, plane, kBulletMultipoint);
-    }
+std::vector<std::string> detector_names() {
+  std::vector<std::string> names;
+  for (const DetectorInfo& d : detectors()) names.emplace_back(d.name);
+  names.insert(names.begin() + 1, kOwnAliases.begin(), kOwnAliases.end());
+  return names;
+}
+
+// The detectors shown when none are named: every one, those that differ on box-plane queries
+// only when the query is box-plane.
+std::vector<std::string> default_detectors(const ContactQuery& query) {
+  std::vector<std::string> names;
+  for (const DetectorInfo& d : detectors()) {
+    if (!d.box_plane_only || query.plane) names.emplace_back(d.name);
   }
-  return m;
+  return names;
+}
+
+// One contact set per detector, then the answers saved in the query file.
+std::vector<std::pair<std::string, Manifold>> contact_sets(const ContactsOptions& options, const ContactQuery& query) {
+  std::vector<std::string> names = options.engines.empty() ? default_detectors(query) : options.engines;
+  std::vector<std::pair<std::string, Manifold>> sets;
+  for (const std::string& listed : names) {
+    const std::string name = detector_of(listed);
+    const bool listed_twice =
+        std::any_of(sets.begin(), sets.end(), [&](const auto& s) { return s.first == name; });
+    if (!listed_twice) sets.emplace_back(name, find_detector(name).detect(query, detect_options(options)));
+  }
+  for (const RecordedAnswer& r : query.answers) sets.emplace_back(r.detector + " (saved)", r.contacts);
+  return sets;
 }
 
 nlohmann::json optional_number(const std::optional<double>& x) {
@@ -69,56 +79,129 @@ nlohmann::json to_json(const ContactDiff& d, std::string_view reference) {
           {"tested", d.reference_tested ? std::string(reference) : std::string(kOwn)}};
 }
 
+using ContactSets = std::vector<std::pair<std::string, Manifold>>;
+
+const Manifold* own_set(const ContactSets& sets) {
+  const auto own = std::find_if(sets.begin(), sets.end(), [](const auto& s) { return s.first == kOwn; });
+  return own == sets.end() ? nullptr : &own->second;
+}
+
+void print_json(const ContactsOptions& options, const ContactQuery& query, const ContactSets& sets) {
+  nlohmann::json engines = nlohmann::json::object();
+  for (const auto& [name, m] : sets) engines[name] = answer_json(m);
+  nlohmann::json doc = {{"query", options.query}, {"kind", query.b ? "box-box" : "box-plane"}, {"engines", engines}};
+  if (const Manifold* own = own_set(sets)) {
+    nlohmann::json diff = nlohmann::json::object();
+    for (const auto& [name, m] : sets) {
+      if (name != kOwn) diff[name] = to_json(diff_contacts(*own, m), name);
+    }
+    doc["diff"] = diff;
+  }
+  std::cout << doc.dump(2) << '\n';
+}
+
+std::string cell(const char* format, double x) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, x);
+  return text;
+}
+
+std::string vec_cell(const Vec3& v) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%9.5f, %9.5f, %9.5f)", v.x(), v.y(), v.z());
+  return text;
+}
+
+std::string optional_cell(const std::optional<double>& x, const char* format) {
+  return x ? cell(format, *x) : std::string("-");
+}
+
+void print_table(const ContactsOptions& options, const ContactQuery& query, const ContactSets& sets) {
+  std::cout << options.query << ": " << (query.b ? "box-box" : "box-plane") << "\n";
+  if (!query.note.empty()) std::cout << "note: " << query.note << "\n";
+  std::cout << '\n';
+  char line[256];
+  std::snprintf(line, sizeof line, "%-22s %2s  %-33s %-33s %12s\n", "detector", "#", "position (m)", "normal",
+                "depth (m)");
+  std::cout << line;
+  for (const auto& [name, m] : sets) {
+    if (m.empty()) {
+      std::snprintf(line, sizeof line, "%-22s  -  no contact\n", name.c_str());
+      std::cout << line;
+    }
+    for (int i = 0; i < m.size(); ++i) {
+      std::snprintf(line, sizeof line, "%-22s %2d  %-33s %-33s %12.3e\n", i == 0 ? name.c_str() : "", i,
+                    vec_cell(m[i].position).c_str(), vec_cell(m[i].normal).c_str(), m[i].depth);
+      std::cout << line;
+    }
+  }
+  const Manifold* own = own_set(sets);
+  if (!own) return;
+  std::snprintf(line, sizeof line, "\n%-22s %7s %12s %12s %12s %12s\n", "against own", "points", "angle (rad)",
+                "depth diff", "hausdorff", "outside hull");
+  std::cout << line;
+  for (const auto& [name, m] : sets) {
+    if (name == kOwn) continue;
+    const ContactDiff d = diff_contacts(*own, m);
+    std::snprintf(line, sizeof line, "%-22s %3d/%-3d %12s %12s %12s %12s\n", name.c_str(), d.own_points,
+                  d.reference_points, optional_cell(d.normal_angle, "%.2e").c_str(),
+                  optional_cell(d.depth_difference, "%.2e").c_str(), optional_cell(d.hausdorff, "%.2e").c_str(),
+                  optional_cell(d.hull_distance, "%.2e").c_str());
+    std::cout << line;
+  }
+}
+
+// The line protocol: a query per input line, an answer per output line, flushed at once (the
+// other side waits for it). Blank lines are skipped.
+int serve(const ContactsOptions& options) {
+  const DetectorInfo& detector = find_detector(detector_of(options.engine));
+  std::string line;
+  for (int n = 1; std::getline(std::cin, line); ++n) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const ContactQuery query = parse_query(line, "stdin line " + std::to_string(n));
+    std::cout << answer_json(detector.detect(query, detect_options(options))).dump() << std::endl;
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 void add_contacts_command(CLI::App& app, ContactsOptions& options) {
   CLI::App* cmd = app.add_subcommand("contacts", "Print the contact sets of a box-box or box-plane query "
                                                  "from our detector and the reference engines, with diffs");
-  cmd->add_option("query", options.query, "Query file (JSON): boxes a and b, or box a and a plane")
-      ->required();
+  CLI::Option* query = cmd->add_option("query", options.query, "Query file (JSON): boxes a and b, or box a and a plane");
   cmd->add_flag("--reduce", options.reduce, "Reduce our box-box manifold to at most 4 points");
   cmd->add_option("--engines", options.engines,
-                  "Comma-separated detectors to show: own (own-impulse and own-penalty are the same "
-                  "detector), ode, bullet, bullet_multipoint (default: own, "
-                  "ode, bullet, and bullet_multipoint for a box-plane query). \"diff\" compares each "
-                  "reference with own when own is shown.")
+                  "Comma-separated detectors to show (own-impulse and own-penalty are own: one detector; "
+                  "default: own, ode, bullet, and bullet_multipoint for a box-plane query); each is compared "
+                  "with own when own is shown")
       ->delimiter(',')
-      ->check(CLI::IsMember(kDetectors));
+      ->check(CLI::IsMember(detector_names()));
+  cmd->add_option("--format", options.format, "Output: table (the default on a terminal) or json (when piped)")
+      ->check(CLI::IsMember({kTable, kJson}));
+  CLI::Option* serve_flag = cmd->add_flag(
+      "--serve", options.serve, "Answer queries on stdin, one JSON line each, with one detector (docs/conform.md)");
+  cmd->add_option("--engine", options.engine, "The detector that answers under --serve")
+      ->check(CLI::IsMember(detector_names()))
+      ->needs(serve_flag)
+      ->capture_default_str();
+  serve_flag->excludes(query);
+  cmd->callback([&options, query]() {
+    if (!options.serve && query->count() == 0) throw CLI::RequiredError("query (or --serve)");
+  });
 }
 
 int run_contacts(const ContactsOptions& options) {
+  if (options.serve) return serve(options);
   check_distinct(options.engines, "--engines");
   const ContactQuery query = load_query(options.query);
-  std::vector<std::string> names = options.engines;
-  if (names.empty()) {
-    names = {"own", "ode", "bullet"};
-    if (query.plane) names.emplace_back("bullet_multipoint");
+  const ContactSets sets = contact_sets(options, query);
+  const bool table = options.format.empty() ? isatty(STDOUT_FILENO) == 1 : options.format == kTable;
+  if (table) {
+    print_table(options, query, sets);
+  } else {
+    print_json(options, query, sets);
   }
-
-  nlohmann::json engines = nlohmann::json::object();
-  std::vector<std::pair<std::string, Manifold>> results;
-  for (const std::string& listed : names) {
-    const std::string name = detector_of(listed);
-    if (engines.contains(name)) continue;  // listed twice
-    const Manifold m = detect(name, query, options.reduce);
-    nlohmann::json contacts = nlohmann::json::array();
-    for (const Contact& c : m) contacts.push_back(to_json(c));
-    engines[name] = {{"contacts", contacts}};
-    results.emplace_back(name, m);
-  }
-
-  nlohmann::json doc = {{"query", options.query},
-                        {"kind", query.b ? "box-box" : "box-plane"},
-                        {"engines", engines}};
-  const auto own = std::find_if(results.begin(), results.end(), [](const auto& r) { return r.first == kOwn; });
-  if (own != results.end()) {
-    nlohmann::json diff = nlohmann::json::object();
-    for (const auto& [name, m] : results) {
-      if (name != kOwn) diff[name] = to_json(diff_contacts(own->second, m), name);
-    }
-    doc["diff"] = diff;
-  }
-  std::cout << doc.dump(2) << '\n';
   return kExitOk;
 }
 

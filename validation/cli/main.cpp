@@ -1,11 +1,27 @@
 // boxpile: run box-pile scenes in our simulator and in ODE and Bullet, and compare them.
 #include <iostream>
 
-#include "reference/ode_engine.hpp"
-#include "sim/io/input_error.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/output_safety.hpp"
+#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/collider_process.hpp"
+#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/output_safety.hpp"
+#include "boxpile/validation/report_directory.hpp"
+
+namespace {
+
+// Errors of the user's input (a file, a name, a flag, an output path, a collider, a scene outside
+// what ODE can take): exit 2; anything else 1.
+bool is_bad_input(const std::exception& e) {
+  return dynamic_cast<const boxpile::InputError*>(&e) || dynamic_cast<const boxpile::UnknownEngine*>(&e) ||
+         dynamic_cast<const boxpile::UnknownDetector*>(&e) || dynamic_cast<const boxpile::ColliderError*>(&e) ||
+         dynamic_cast<const boxpile::OutputError*>(&e) || dynamic_cast<const boxpile::cli::UsageError*>(&e) ||
+         dynamic_cast<const boxpile::OdeError*>(&e);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace boxpile::cli;
@@ -23,6 +39,10 @@ int main(int argc, char** argv) {
   add_run_command(app, run);
   CompareOptions compare;
   add_compare_command(app, compare);
+  ConformOptions conform;
+  add_conform_command(app, conform);
+  ViewOptions view;
+  add_view_command(app, view);
 
   try {
     app.parse(argc, argv);
@@ -39,27 +59,17 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("contacts")) return run_contacts(contacts);
     if (app.got_subcommand("run")) return run_run(run);
     if (app.got_subcommand("compare")) return run_compare_command(compare);
+    if (app.got_subcommand("conform")) return run_conform_command(conform);
+    if (app.got_subcommand("view")) return run_view(view);
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());
-  } catch (const boxpile::InputError& e) {
-    std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitBadInput;
-  } catch (const boxpile::UnknownEngine& e) {
-    std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitBadInput;
-  } catch (const boxpile::OutputError& e) {
-    std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitBadInput;
-  } catch (const UsageError& e) {
-    std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitBadInput;
   } catch (const boxpile::OdeError& e) {
     std::cerr << "boxpile: error: " << e.what() << " (the input is outside what ODE can take)\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "boxpile: error: " << e.what() << '\n';
-    return kExitFailure;
+    return is_bad_input(e) ? kExitBadInput : kExitFailure;
   }
   return kExitFailure;
 }

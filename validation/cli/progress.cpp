@@ -1,4 +1,4 @@
-#include "validation/cli/progress.hpp"
+#include "boxpile/validation/cli/progress.hpp"
 
 #include <unistd.h>
 

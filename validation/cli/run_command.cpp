@@ -1,21 +1,20 @@
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <limits>
 
-#include "reference/ode_engine.hpp"
-#include "sim/finite.hpp"
-#include "sim/io/scene_loader.hpp"
-#include "sim/time_steps.hpp"
-#include "sim/world.hpp"
-#include "validation/cli/commands.hpp"
-#include "validation/cli/json_output.hpp"
-#include "validation/cli/progress.hpp"
-#include "validation/engine_factory.hpp"
-#include "validation/output_safety.hpp"
-#include "validation/state_meter.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/sim/time_steps.hpp"
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/progress.hpp"
+#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/json_output.hpp"
+#include "boxpile/validation/output_safety.hpp"
+#include "boxpile/validation/recording.hpp"
+#include "boxpile/validation/run_loop.hpp"
+#include "boxpile/validation/state_meter.hpp"
 
 namespace boxpile::cli {
 namespace {
@@ -23,25 +22,19 @@ namespace {
 // Up to this many bodies the human summary lists each one; above it, the extremes only.
 constexpr std::size_t kSummaryBodyLimit = 10;
 
-nlohmann::json metrics_json(const FrameMetrics& m) {
-  return {{"energy", {{"kinetic", m.energy.kinetic()}, {"potential", m.energy.potential}, {"total", m.energy.total()}}},
-          {"max_penetration", m.penetration.depth},
-          {"levitation", m.levitation}};
-}
-
 // Our solver's statistics of its last step. Impulse method: passes used and the residual
 // (largest approaching normal velocity, m/s) after each pass, for the convergence plots. Penalty
 // method: its substeps and the work of its springs and anchors so far.
-nlohmann::json solver_json(const World& world) {
-  if (world.scene().solver.method == ContactSolver::Penalty) {
-    const PenaltyCounters& p = world.counters().penalty;
+nlohmann::json solver_json(std::string_view method, const StepStats& st, const WorldCounters& counters,
+                           std::size_t events) {
+  if (method == "penalty") {
+    const PenaltyCounters& p = counters.penalty;
     return {{"method", "penalty"},
-            {"substeps", world.counters().penalty_substeps},
+            {"substeps", counters.penalty_substeps},
             {"spring_evaluations", p.spring_evaluations},
             {"anchors_created", p.anchors_created},
             {"sliding_points", p.sliding_points}};
   }
-  const StepStats& st = world.last_step_stats();
   nlohmann::json collision = nlohmann::json::array(), contact = nlohmann::json::array();
   for (int k = 0; k < st.collision_passes_used; ++k) collision.push_back(st.collision_residual[k]);
   for (int k = 0; k < st.contact_passes_used; ++k) contact.push_back(st.contact_residual[k]);
@@ -51,7 +44,7 @@ nlohmann::json solver_json(const World& world) {
           {"contact_residuals", contact},
           {"shock_levels", st.shock_levels},
           {"residual_after_shock", st.residual_after_shock},
-          {"collision_events", world.events().size()}};
+          {"collision_events", events}};
 }
 
 // Runs at least this long show their progress on stderr.
@@ -134,84 +127,76 @@ int run_run(const RunOptions& options) {
   const std::unique_ptr<Engine> engine = make_engine(options.engine, scene, settings);
   const bool record = out.has_value();
 
-  std::vector<BodyState> states;
-  std::vector<BodyContact> contacts;
-  nlohmann::json frames = nlohmann::json::array();
-  StateMeter meter(scene);
-  const auto* own = dynamic_cast<const World*>(engine.get());
-  auto add_frame = [&] {
-    engine->body_states(states);
-    engine->contacts(contacts);
-    nlohmann::json frame = {{"t", engine->time()}, {"bodies", bodies_json(states)}, {"contacts", contacts.size()}};
-    frame.update(metrics_json(meter.measure(states)));
-    if (own) frame["solver"] = solver_json(*own);
-    frames.push_back(std::move(frame));
-  };
-
-  using Clock = std::chrono::steady_clock;
-  Clock::duration stepping{};
+  Recorder recorder(scene, options.engine);
+  std::vector<nlohmann::json> solver;  // our solver's statistics, per frame
+  RunHooks hooks;
+  if (record) {
+    hooks.frame = [&](const StepView& v) {
+      recorder.frame(v);
+      const StepStats* stats = engine->solver_stats();
+      const WorldCounters* counters = engine->solver_counters();
+      if (stats && counters) {
+        const auto* events = engine->collision_events();
+        solver.push_back({{"solver", solver_json(engine->contact_method(), *stats, *counters,
+                                                 events ? events->size() : 0)}});
+      }
+    };
+  }
+  // Every hundredth of the run: an interrupt is noticed, and long runs show their progress.
   ProgressPrinter progress;
   const bool show_progress = steps >= kProgressMinSteps;
   const long progress_every = std::max(1L, steps / 100);
-  if (record) add_frame();
+  hooks.step = [&](const StepView& v) {
+    if (v.step == 0 || v.step % progress_every != 0) return;
+    throw_if_interrupted();
+    if (show_progress) progress({options.engine, "", 0, 1, static_cast<double>(v.step) / static_cast<double>(steps)});
+  };
+  RunLoopResult loop;
   try {
     const InterruptScope scope;
-    for (long k = 1; k <= steps; ++k) {
-      const Clock::time_point start = Clock::now();
-      engine->step();
-      stepping += Clock::now() - start;
-      engine->body_states(states);
-      if (const auto bad = find_non_finite(states)) {
-        // Nothing after a non-finite state means anything: stop, and write nothing.
-        std::cerr << "boxpile: error: " << options.engine << ": " << describe_non_finite(k, engine->time(), states, *bad)
-                  << (record ? "; nothing written\n" : "\n");
-        return kExitFailure;
-      }
-      if (record && k % options.every == 0) add_frame();
-      if (k % progress_every == 0) {
-        throw_if_interrupted();
-        if (show_progress) progress({options.engine, "", 0, 1, static_cast<double>(k) / static_cast<double>(steps)});
-      }
-    }
+    loop = run_loop(*engine, dt, steps, options.every, hooks);
   } catch (const Interrupted&) {
     std::cerr << "\nboxpile: interrupted" << (record ? ": nothing written\n" : "\n");
     return kExitInterrupted;
   }
-  const double wall = std::chrono::duration<double>(stepping).count();
-
-  engine->body_states(states);
-  engine->contacts(contacts);
-  if (const auto* ode = dynamic_cast<const OdeEngine*>(engine.get()); ode && ode->messages() > 0) {
-    std::cerr << "boxpile: note: ODE reported " << ode->messages() << " message(s); the last: "
-              << ode_messages().last << '\n';
+  const std::vector<BodyState>& states = loop.final_states;
+  if (loop.stopped) {
+    // Nothing after a non-finite state means anything: the run stops there, and writes nothing.
+    std::cerr << "boxpile: error: " << options.engine << ": " << loop.stopped->description
+              << (record ? "; nothing written\n" : "\n");
   }
 
-  if (record) {
+  if (engine->messages() > 0) {
+    std::cerr << "boxpile: note: " << engine->name() << " reported " << engine->messages() << " message(s); the last: "
+              << engine->last_message() << '\n';
+  }
+
+  if (record && !loop.stopped) {
     nlohmann::json events = nlohmann::json::array();
-    if (own) {
-      for (const CollisionEvent& e : own->events()) {
+    if (const auto* recorded = engine->collision_events()) {
+      for (const CollisionEvent& e : *recorded) {
         events.push_back({{"t", e.time}, {"body_a", states[e.body_a].name},
                           {"body_b", e.body_b == kGround ? std::string("ground") : states[e.body_b].name},
                           {"impulse", e.impulse}, {"approach_speed", e.approach_speed}});
       }
     }
-    const nlohmann::json doc = {{"scene", scene.name},
-                                {"engine", options.engine},
-                                {"dt", dt},
-                                {"steps", steps},
-                                {"wall_seconds", wall},
-                                {"frames", std::move(frames)},
-                                {"final", {{"t", engine->time()}, {"bodies", bodies_json(states)}}},
-                                {"events", std::move(events)}};
+    nlohmann::json doc = recording_json(recorder.recording(), solver);
+    doc["steps"] = loop.steps;
+    doc["wall_seconds"] = loop.wall_seconds;
+    doc["final"] = {{"t", loop.final_t}, {"bodies", bodies_json(states)}};
+    doc["events"] = std::move(events);
     write_json_file(doc, *out);
   } else {
-    print_summary(scene, options.engine, steps, wall, states, contacts.size());
+    std::vector<BodyContact> contacts;
+    engine->contacts(contacts);
+    print_summary(scene, options.engine, loop.steps, loop.wall_seconds, states, contacts.size());
+    StateMeter meter(scene);
     const FrameMetrics m = meter.measure(states);
     std::cout << "energy " << format(m.energy.total(), "%.6g") << " J (kinetic " << format(m.energy.kinetic(), "%.3g")
               << " J), deepest penetration " << format(m.penetration.depth, "%.3g") << " m, levitation "
               << format(m.levitation, "%.3g") << " m\n";
   }
-  return kExitOk;
+  return loop.stopped ? kExitFailure : kExitOk;
 }
 
 }  // namespace boxpile::cli

@@ -1,7 +1,7 @@
-#include "validation/cli/run_limits.hpp"
+#include "boxpile/validation/cli/run_limits.hpp"
 
-#include "sim/io/input_error.hpp"
-#include "sim/time_steps.hpp"
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/time_steps.hpp"
 
 namespace boxpile::cli {
 

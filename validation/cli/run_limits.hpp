@@ -13,9 +13,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "sim/io/scene_loader.hpp"
-#include "sim/limits.hpp"
-#include "sim/scene.hpp"
+#include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/limits.hpp"
+#include "boxpile/sim/scene.hpp"
 
 namespace boxpile::cli {
 

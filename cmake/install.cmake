@@ -1,0 +1,51 @@
+# `cmake --install build --prefix P`: the libraries, the headers under P/include/boxpile/, the
+# boxpile program, the fixtures and report assets under P/share/boxpile/, and the CMake package
+# (find_package(boxpile) gives boxpile::sim, boxpile::scene_io, boxpile::reference,
+# boxpile::judge and boxpile::validation).
+include(CMakePackageConfigHelpers)
+
+set(BOXPILE_CMAKE_INSTALL_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/boxpile)
+
+# Each library's export name is its short name: boxpile_sim becomes boxpile::sim.
+set(boxpile_libraries boxpile_sim boxpile_scene_io boxpile_reference boxpile_judge boxpile_validation)
+foreach(lib IN LISTS boxpile_libraries)
+  string(REPLACE "boxpile_" "" short ${lib})
+  set_target_properties(${lib} PROPERTIES EXPORT_NAME ${short})
+endforeach()
+
+# boxpile_warnings is linked privately; static libraries still name it in their link interface,
+# so it travels in the export set (it carries no flags outside the build tree).
+install(TARGETS ${boxpile_libraries} boxpile_warnings EXPORT boxpileTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(TARGETS boxpile RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+
+# Headers keep their folders: P/include/boxpile/{sim,reference,validation}/...
+foreach(folder sim reference validation)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/boxpile/${folder}
+    FILES_MATCHING PATTERN "*.hpp")
+endforeach()
+install(FILES ${PROJECT_SOURCE_DIR}/boxpile.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/boxpile)
+
+# Data: every fixture, and the web assets of any report or viewer under validation/ (page
+# templates, scripts, styles, images), folder by folder: validation/replay/viewer.js goes to
+# P/share/boxpile/replay/viewer.js, and a new asset file needs no change here.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/fixtures DESTINATION ${BOXPILE_DATA_INSTALL_DIR})
+file(GLOB boxpile_validation_folders LIST_DIRECTORIES true ${PROJECT_SOURCE_DIR}/validation/*)
+foreach(dir IN LISTS boxpile_validation_folders)
+  file(GLOB_RECURSE assets ${dir}/*.html ${dir}/*.js ${dir}/*.css ${dir}/*.svg ${dir}/*.png)
+  if(IS_DIRECTORY ${dir} AND assets)
+    get_filename_component(name ${dir} NAME)
+    install(DIRECTORY ${dir}/ DESTINATION ${BOXPILE_DATA_INSTALL_DIR}/${name}
+      FILES_MATCHING PATTERN "*.html" PATTERN "*.js" PATTERN "*.css" PATTERN "*.svg" PATTERN "*.png")
+  endif()
+endforeach()
+
+install(EXPORT boxpileTargets NAMESPACE boxpile:: DESTINATION ${BOXPILE_CMAKE_INSTALL_DIR})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/boxpileConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/boxpileConfig.cmake INSTALL_DESTINATION ${BOXPILE_CMAKE_INSTALL_DIR})
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/boxpileConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/boxpileConfig.cmake ${PROJECT_BINARY_DIR}/boxpileConfigVersion.cmake
+  DESTINATION ${BOXPILE_CMAKE_INSTALL_DIR})

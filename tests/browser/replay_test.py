@@ -1,0 +1,204 @@
+#!/usr/bin/python3
+"""The replay page in a real browser: boxpile compare writes replay.html for a short run of the
+bone scene; headless Chromium loads it from disk and the page's state on <body> is checked
+against report.json; a screenshot's pixels must show each engine's colour in its own viewport and
+the ground under them; the page must hold no external resource. Run by ctest (tests/CMakeLists.txt).
+
+Usage: replay_test.py BOXPILE CHROMIUM FIXTURES WORK
+"""
+import colorsys
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+import png  # python3-png
+
+ENGINES = ["own", "ode", "bullet"]
+# The page's colours for the first three engines (validation/replay/viewer.js PALETTE).
+COLOURS = {"own": "#e8743b", "ode": "#3b7dd8", "bullet": "#2ca25f"}
+# A pixel counts as an engine's when its hue is this close to the engine colour's (shading changes
+# brightness, not hue) and it is saturated enough not to be ground or background.
+HUE_TOLERANCE = 12 / 360
+MIN_SATURATION = 0.3
+MIN_VALUE = 0.15
+# Ten 0.4 m boxes of the pile in a 400 x 560 viewport cover thousands of pixels; 300 is far
+# above noise (antialiased edges of another engine's colour) and far below the real count.
+MIN_ENGINE_PIXELS = 300
+# Another engine's colour inside a viewport: at most this fraction of the viewport's own.
+MAX_FOREIGN_FRACTION = 0.02
+# The ground: grey (saturation below this), neither background-dark nor white.
+GROUND_SATURATION = 0.1
+GROUND_VALUE = (0.35, 0.8)
+# The ground fills the lower part of every viewport: at least this fraction of its pixels.
+MIN_GROUND_FRACTION = 0.15
+WINDOW = (1200, 700)
+# The frame shown in the checks: the first frame after a step (frame 0 has no contact set yet).
+FRAME = 1
+
+failures = []
+
+
+def check(condition, message):
+    if not condition:
+        failures.append(message)
+        print("FAIL: " + message)
+
+
+def chromium_command(chromium, extra, url):
+    return [chromium, "--headless", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+            "--disable-gpu-sandbox", "--no-first-run", "--mute-audio",
+            # Any network request would fail: the page must not need one.
+            "--host-resolver-rules=MAP * ~NOTFOUND", "--virtual-time-budget=5000"] + extra + [url]
+
+
+def run_chromium(chromium, extra, url):
+    start = time.monotonic()
+    result = subprocess.run(chromium_command(chromium, extra, url), capture_output=True, text=True, timeout=240)
+    print(f"chromium {' '.join(extra)}: {time.monotonic() - start:.1f} s")
+    if result.returncode != 0:
+        print(result.stderr[-2000:])
+    return result
+
+
+def body_attributes(dom):
+    match = re.search(r"<body\b([^>]*)>", dom)
+    if not match:
+        return {}
+    return dict(re.findall(r'([\w-]+)="([^"]*)"', match.group(1)))
+
+
+def external_resources(html):
+    """What would load something from outside the file: a script with src, an element with src,
+    href or data, url(...) or @import in a style, any address outside the inlined scripts (three.js
+    holds namespace strings in its code, never loaded)."""
+    found = [tag for tag in re.findall(r"<script\b[^>]*>", html, re.IGNORECASE) if re.search(r"\bsrc\s*=", tag)]
+    outside = re.sub(r"<script\b[^>]*>.*?</script>", "", html, flags=re.DOTALL | re.IGNORECASE)
+    found += re.findall(r"<\w+\b[^>]*\b(?:src|href|data|srcset|poster)\s*=[^>]*>", outside, re.IGNORECASE)
+    found += re.findall(r"(?:https?:|ftp:|file:)//|url\(|@import", outside, re.IGNORECASE)
+    return found
+
+
+def hue_of(hex_colour):
+    r, g, b = (int(hex_colour[k:k + 2], 16) / 255 for k in (1, 3, 5))
+    return colorsys.rgb_to_hsv(r, g, b)[0]
+
+
+def hue_distance(a, b):
+    d = abs(a - b) % 1.0
+    return min(d, 1.0 - d)
+
+
+def check_screenshot(path, canvas):
+    """`canvas`: left, top, width, height of the 3D view in the page (data-canvas), in pixels."""
+    width, height, rows, info = png.Reader(filename=path).asRGBA8()
+    rows = [bytearray(r) for r in rows]
+    check((width, height) == WINDOW, f"screenshot is {width}x{height}, expected {WINDOW}")
+    left, top, view_width, view_height = canvas
+    check(view_width > 0 and view_height > 0 and left + view_width <= width and top + view_height <= height,
+          f"data-canvas {canvas} does not lie within the {width}x{height} window")
+    hues = {e: hue_of(COLOURS[e]) for e in ENGINES}
+    columns = len(ENGINES)
+    for index, engine in enumerate(ENGINES):
+        # Side by side: the viewports split the view's width evenly.
+        x0, x1 = left + index * view_width // columns, left + (index + 1) * view_width // columns
+        counts = {e: 0 for e in ENGINES}
+        ground = total = 0
+        for y in range(top, min(height, top + view_height)):
+            row = rows[y]
+            for x in range(x0, x1):
+                r, g, b = row[4 * x] / 255, row[4 * x + 1] / 255, row[4 * x + 2] / 255
+                h, s, v = colorsys.rgb_to_hsv(r, g, b)
+                total += 1
+                if s < GROUND_SATURATION and GROUND_VALUE[0] <= v <= GROUND_VALUE[1]:
+                    ground += 1
+                if s < MIN_SATURATION or v < MIN_VALUE:
+                    continue
+                for e in ENGINES:
+                    if hue_distance(h, hues[e]) < HUE_TOLERANCE:
+                        counts[e] += 1
+        print(f"viewport {engine}: engine pixels {counts}, ground {ground / total:.2f} of {total}")
+        check(counts[engine] >= MIN_ENGINE_PIXELS,
+              f"viewport {index} ({engine}): {counts[engine]} pixels of its colour, expected >= {MIN_ENGINE_PIXELS}")
+        for other in ENGINES:
+            if other != engine:
+                check(counts[other] <= MAX_FOREIGN_FRACTION * max(counts[engine], 1),
+                      f"viewport {index} ({engine}): {counts[other]} pixels of {other}'s colour")
+        check(ground >= MIN_GROUND_FRACTION * total,
+              f"viewport {index} ({engine}): ground covers {ground / total:.2f}, expected >= {MIN_GROUND_FRACTION}")
+
+
+def main():
+    boxpile, chromium, fixtures, work = sys.argv[1:5]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    report_dir = os.path.join(work, "report")
+    compare = subprocess.run([boxpile, "compare", os.path.join(fixtures, "scenes", "bone_hits_pile.json"),
+                              "--duration", "0.1", "--engines", ",".join(ENGINES), "--report", report_dir],
+                             capture_output=True, text=True)
+    check(compare.returncode == 0, f"boxpile compare: exit {compare.returncode}\n{compare.stderr}")
+    page = os.path.join(report_dir, "replay.html")
+    check(os.path.isfile(page), "compare wrote no replay.html")
+    if failures:
+        return 1
+    with open(os.path.join(report_dir, "report.json")) as f:
+        report = json.load(f)
+    with open(page, encoding="utf-8") as f:
+        html = f.read()
+    check(external_resources(html) == [], f"external resources in the page: {external_resources(html)[:5]}")
+
+    url = "file://" + os.path.abspath(page) + f"#frame={FRAME}&mode=side"
+    window = f"--window-size={WINDOW[0]},{WINDOW[1]}"
+    dom = run_chromium(chromium, ["--dump-dom", window], url).stdout
+    body = body_attributes(dom)
+    print("body:", body)
+    check(body.get("data-state") == "ready", f"data-state is {body.get('data-state')!r}, expected 'ready'")
+    check(body.get("data-engines") == ",".join(ENGINES), f"data-engines is {body.get('data-engines')!r}")
+    check(sorted(report["engines"]) == sorted(ENGINES), f"report.json engines {sorted(report['engines'])}")
+    frames = {len(report["engines"][e]["series"]["t"]) for e in ENGINES}
+    check(len(frames) == 1 and body.get("data-frames") == str(frames.pop()),
+          f"data-frames {body.get('data-frames')!r} against report.json's {frames}")
+    check(body.get("data-frame") == str(FRAME), f"data-frame {body.get('data-frame')!r}, expected {FRAME}")
+    contacts = sum(report["engines"][e]["series"]["contacts"][FRAME] for e in ENGINES)
+    check(contacts > 0, "report.json: no contact in the frame checked (the pile rests on the ground)")
+    check(body.get("data-contacts") == str(contacts),
+          f"data-contacts {body.get('data-contacts')!r}, expected {contacts} (report.json, frame {FRAME})")
+    check(body.get("data-resources") == "0", f"the page loaded {body.get('data-resources')} resources")
+
+    # Overlaid, contacts off, a body picked by name, playing: the 0.1 s run plays to its last frame
+    # within the 5 s of virtual time, drawing no contact, with the body still picked.
+    other = body_attributes(run_chromium(chromium, ["--dump-dom"],
+                                         url.replace("mode=side", "mode=overlay") + "&contacts=0&pick=p3_0&play=1").stdout)
+    check(other.get("data-mode") == "overlay", f"mode=overlay: data-mode is {other.get('data-mode')!r}")
+    check(other.get("data-contacts") == "0", "contacts=0: contact points still drawn")
+    check(other.get("data-picked") == "p3_0", f"pick=p3_0: data-picked is {other.get('data-picked')!r}")
+    last = str(len(report["engines"][ENGINES[0]]["series"]["t"]) - 1)
+    check(other.get("data-frame") == last, f"play=1: stopped at frame {other.get('data-frame')!r}, expected {last}")
+
+    # A page whose data does not add up says so on <body> rather than drawing nonsense.
+    data_tag = re.search(r'(<script id="replay-data" type="application/json">)(.*?)(</script>)', html, re.DOTALL)
+    data = json.loads(data_tag.group(2))
+    data["engines"][1]["states"] = "AAAA"
+    broken = os.path.join(work, "broken.html")
+    with open(broken, "w", encoding="utf-8") as f:
+        f.write(html[:data_tag.start(2)] + json.dumps(data).replace("</", "<\\/") + html[data_tag.end(2):])
+    state = body_attributes(run_chromium(chromium, ["--dump-dom"], "file://" + broken).stdout).get("data-state", "")
+    print("broken page:", state)
+    check(state.startswith("error: ") and ENGINES[1] in state, f"a broken page reports data-state {state!r}")
+
+    shot = os.path.join(work, "replay.png")
+    run_chromium(chromium, [f"--screenshot={shot}", window], url)
+    check(os.path.isfile(shot), "chromium wrote no screenshot")
+    canvas = [int(v) for v in body.get("data-canvas", "0,0,0,0").split(",")]
+    if os.path.isfile(shot):
+        check_screenshot(shot, canvas)
+
+    print("replay page: every check passed" if not failures else f"replay page: {len(failures)} check(s) failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

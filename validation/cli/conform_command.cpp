@@ -1,0 +1,97 @@
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+#include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/collider_process.hpp"
+#include "boxpile/validation/conform_report.hpp"
+#include "boxpile/validation/data_directory.hpp"
+#include "boxpile/validation/judge/check_collider.hpp"
+#include "boxpile/validation/report_directory.hpp"
+
+namespace boxpile::cli {
+namespace {
+
+// `--cases none` judges random pairs only.
+constexpr const char* kNoCases = "none";
+// More pairs than a day of a slow collider's answers is a typo.
+constexpr int kMaxSamples = 100'000'000;
+
+std::vector<std::string> regime_names() {
+  std::vector<std::string> names;
+  for (const Regime r : all_regimes()) names.emplace_back(regime_name(r));
+  return names;
+}
+
+std::string cases_folder(const ConformOptions& options) {
+  if (options.cases == kNoCases) return "";
+  if (!options.cases.empty()) return options.cases;
+  return data_path("fixtures/contacts").string();
+}
+
+CheckOptions check_options(const ConformOptions& options, const std::string& cases) {
+  CheckOptions check;
+  check.samples = options.samples;
+  check.seed = options.seed;
+  if (!options.regimes.empty()) {
+    check.regimes.clear();
+    for (const std::string& name : options.regimes) check.regimes.push_back(*regime_from_name(name));
+  }
+  if (!cases.empty()) check.cases = load_cases(cases);
+  check.swap = !options.no_swap;
+  return check;
+}
+
+}  // namespace
+
+void add_conform_command(CLI::App& app, ConformOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "conform", "Judge an outside box-box/box-plane collider through the line protocol (docs/conform.md): "
+                 "the contact fixtures and random pose pairs, held to the conformance gates");
+  cmd->add_option("--collider", options.collider,
+                  "Command that reads one query per line on stdin and writes one answer per line "
+                  "(run through /bin/sh)")
+      ->required();
+  cmd->add_option("--samples", options.samples, "Random pose pairs")->check(CLI::Range(0, kMaxSamples))->capture_default_str();
+  cmd->add_option("--seed", options.seed, "Seed of the random pose pairs")->capture_default_str();
+  cmd->add_option("--cases", options.cases,
+                  "Folder of contact queries judged first (default: the installed fixtures/contacts; \"none\": "
+                  "no fixed cases)");
+  cmd->add_option("--regimes", options.regimes, "Comma-separated regimes of the random pairs (default: all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(regime_names()));
+  cmd->add_option("--timeout", options.timeout, "Seconds the collider may take per answer")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag("--no-swap", options.no_swap, "Do not ask each box-box query again with A and B swapped");
+  cmd->add_option("--report", options.report,
+                  "Report directory: conform.json, conform.md, failures/ (replaced as a whole; an existing one "
+                  "must be empty or hold a previous conform report)")
+      ->required();
+}
+
+int run_conform_command(const ConformOptions& options) {
+  ConformRun run;
+  run.collider = options.collider;
+  run.cases = cases_folder(options);
+  run.options = check_options(options, run.cases);
+  // Before the run: a report directory that cannot be written fails now.
+  ReportDirectory dir(options.report, {}, "conform.json");
+
+  const auto start = std::chrono::steady_clock::now();
+  {
+    ColliderProcess process(options.collider, std::chrono::milliseconds(std::lround(options.timeout * 1000.0)));
+    run.result = check_collider([&process](const ContactQuery& q) { return process.ask(q); }, run.options);
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  write_conform_report(run, dir.staging());
+  dir.commit();
+  std::cout << conform_summary(run);
+  const std::filesystem::path md = std::filesystem::absolute(dir.target()) / "conform.md";
+  std::cout << "report: " << md.lexically_normal().string() << '\n';
+  return run.result.within_gates() ? kExitOk : kExitFailure;
+}
+
+}  // namespace boxpile::cli

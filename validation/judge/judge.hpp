@@ -1,0 +1,91 @@
+// The brute-force judge of a contact set: is a collider's answer for one box-box or box-plane
+// query right in boxpile's convention (position midway between the surfaces, normal from B toward
+// A, depth > 0 when penetrating)? Every criterion is decided from the boxes alone, never by
+// comparing with another detector: the conformance suite, `boxpile conform` and
+// check_collider() all judge through it.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "boxpile/sim/collision/box.hpp"
+#include "boxpile/sim/collision/contact.hpp"
+#include "boxpile/sim/scene.hpp"
+
+namespace boxpile {
+
+// --- tolerances --------------------------------------------------------------------------------
+// Boxes of 0.1-1 m computed in double precision: detectors that agree differ by rounding
+// (1e-15 m); these bounds sit far above that and far below any physical difference.
+inline constexpr double kJudgeNormalTolerance = 1e-8;  // rad, between normals meant to be equal
+inline constexpr double kJudgeDepthTolerance = 1e-9;   // m, between a depth and the true one
+// ODE and Bullet find face points through a 2x2 inverse, which loses digits when the incident
+// face stands nearly on edge: 1e-7 m covers that.
+inline constexpr double kJudgeRegionTolerance = 1e-7;  // m, a point outside a box or region
+inline constexpr double kJudgeUnitTolerance = 1e-12;   // |n| - 1
+// Within this of zero, the least penetration says "touching": contact and no contact are both
+// right.
+inline constexpr double kJudgeTouchingTolerance = 1e-9;  // m
+// Detectors prefer a face axis to an edge axis up to about 5% of depth (ours: an edge only if 5%
+// + 1e-6 scale shallower; ODE and Bullet: a fudge factor of 1.05), so a normal whose penetration
+// exceeds the least by up to this band is right.
+inline constexpr double kFaceBiasRelative = 1.0 / 0.95 - 1.0;
+inline constexpr double kFaceBiasAbsolute = 1e-6 / 0.95;  // times the largest half extent
+
+// Tolerances a judge applies; the defaults suit a double-precision collider of boxes near unit
+// size. A float collider needs looser ones (say 1e-5 for depth, region and unit).
+struct JudgeTolerances {
+  double normal = kJudgeNormalTolerance;      // rad
+  double depth = kJudgeDepthTolerance;        // m
+  double region = kJudgeRegionTolerance;      // m
+  double unit = kJudgeUnitTolerance;          // |n| - 1
+  double touching = kJudgeTouchingTolerance;  // m
+};
+
+// --- what can be wrong -------------------------------------------------------------------------
+enum class FailureKind {
+  Missed,   // the boxes overlap by more than the touching tolerance, the answer has no contact
+  Phantom,  // the boxes are apart by more than the touching tolerance, the answer says they touch
+  Normal,   // a normal not unit, or not the least-penetration direction within the face-bias band
+  Depth,    // the deepest depth is not the true penetration along the answer's normal
+  Outside,  // a point lies outside box A or B by more than half its depth
+  Swap,     // the answer for (B, A) is not the answer for (A, B) with the normal reversed
+};
+std::span<const FailureKind> all_failure_kinds();
+std::string_view failure_name(FailureKind k);
+
+// One failed criterion: which, by how much (m, or rad for a normal's angle), and a sentence.
+struct Finding {
+  FailureKind kind;
+  double error = 0.0;
+  std::string why;
+};
+
+// --- the brute-force quantities of one pair -----------------------------------------------------
+// How much the penetration along n exceeds the least penetration, and whether that is within the
+// face-bias band.
+struct NormalJudgement {
+  double excess = 0.0;  // m
+  bool acceptable = false;
+};
+NormalJudgement judge_normal(const OrientedBox& a, const OrientedBox& b, const Vec3& n,
+                             const JudgeTolerances& tol = {});
+
+// The least penetration of A and B over the 15 separating axes, m (negative when apart).
+double true_depth(const OrientedBox& a, const OrientedBox& b);
+// The depth of the box's deepest vertex below the plane, m (negative when above).
+double true_depth(const OrientedBox& a, const HalfSpace& plane);
+
+// --- judging answers ---------------------------------------------------------------------------
+// What is wrong with `answer` for boxes A and B; empty when it is right. `swapped`, when given,
+// is the same collider's answer for (B, A).
+std::vector<Finding> judge_box_box(const OrientedBox& a, const OrientedBox& b, const Manifold& answer,
+                                   const std::optional<Manifold>& swapped = {}, const JudgeTolerances& tol = {});
+// What is wrong with `answer` for box A against the plane (its normal is the answer's normal).
+std::vector<Finding> judge_box_plane(const OrientedBox& a, const HalfSpace& plane, const Manifold& answer,
+                                     const JudgeTolerances& tol = {});
+
+}  // namespace boxpile

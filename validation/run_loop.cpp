@@ -1,0 +1,51 @@
+#include "boxpile/validation/run_loop.hpp"
+
+#include <chrono>
+#include <utility>
+
+#include "boxpile/sim/finite.hpp"
+
+namespace boxpile {
+
+RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const RunHooks& hooks) {
+  using Clock = std::chrono::steady_clock;
+  RunLoopResult result;
+  std::vector<BodyState> before, states;
+  engine.body_states(states);
+  before = states;
+  long last_frame = 0;
+  const auto call = [&](const std::function<void(const StepView&)>& hook, long k) {
+    if (hook) hook(StepView{engine, k, static_cast<double>(k) * dt, before, states});
+  };
+  call(hooks.step, 0);
+  call(hooks.frame, 0);
+
+  Clock::duration stepping{};
+  for (long k = 1; k <= steps; ++k) {
+    std::swap(before, states);
+    const Clock::time_point start = Clock::now();
+    engine.step();
+    stepping += Clock::now() - start;
+    engine.body_states(states);
+    if (const auto bad = find_non_finite(states)) {
+      const double t = static_cast<double>(k) * dt;
+      result.stopped = NonFiniteStop{k, t, states[bad->body].name, std::string(bad->quantity),
+                                     describe_non_finite(k, t, states, *bad)};
+      std::swap(before, states);  // back to the last finite states
+      if (last_frame < k - 1) call(hooks.frame, k - 1);
+      break;
+    }
+    result.steps = k;
+    call(hooks.step, k);
+    if (k % every == 0 || k == steps) {
+      call(hooks.frame, k);
+      last_frame = k;
+    }
+  }
+  result.wall_seconds = std::chrono::duration<double>(stepping).count();
+  result.final_states = std::move(states);
+  result.final_t = static_cast<double>(result.steps) * dt;
+  return result;
+}
+
+}  // namespace boxpile

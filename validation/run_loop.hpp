@@ -1,0 +1,53 @@
+// The one loop that steps an engine through a scene, for every command that runs one (`run`,
+// `compare`): it times the steps alone, checks every state for finiteness after each step, and
+// calls its hooks after each step and at each recorded frame.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "boxpile/sim/engine.hpp"
+
+namespace boxpile {
+
+// The first quantity found non-finite after a step: the run stops there.
+struct NonFiniteStop {
+  long step = 0;  // 1-based: the step that produced it
+  double t = 0.0;  // s, after that step
+  std::string body;
+  std::string quantity;  // "position", "orientation", "velocity" or "angular_velocity"
+  std::string description;  // step, time, body and quantity in one line (sim/finite.hpp)
+};
+
+// What the hooks see. Step 0 is the start (`before` is then the start too).
+struct StepView {
+  const Engine& engine;
+  long step = 0;
+  double t = 0.0;  // s, after the step
+  const std::vector<BodyState>& before;  // states before the step
+  const std::vector<BodyState>& states;  // states after it
+};
+
+struct RunHooks {
+  // After every step, and once at the start (step 0).
+  std::function<void(const StepView&)> step;
+  // At the start, every `every` steps and after the last step.
+  std::function<void(const StepView&)> frame;
+};
+
+struct RunLoopResult {
+  long steps = 0;  // steps taken (fewer than asked when stopped)
+  double wall_seconds = 0.0;  // in Engine::step() alone
+  std::optional<NonFiniteStop> stopped;
+  std::vector<BodyState> final_states;  // the last finite states
+  double final_t = 0.0;  // s
+};
+
+// Steps `engine` `steps` times (dt is the engine's). A step that leaves any state non-finite
+// (sim/finite.hpp) ends the run: no hook sees that step, the last finite states are recorded as a frame (when not
+// already), and the result says where it happened.
+RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const RunHooks& hooks);
+
+}  // namespace boxpile
