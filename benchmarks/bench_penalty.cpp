@@ -8,6 +8,7 @@
 #include <string>
 
 #include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/time_steps.hpp"
 #include "boxpile/sim/world.hpp"
 
 namespace boxpile {
@@ -16,7 +17,7 @@ namespace {
 void penalty_steps(benchmark::State& state, const std::string& scene_name) {
   Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + scene_name + ".json");
   scene.solver.method = ContactSolver::Penalty;
-  const long steps = std::lround(scene.time.duration / scene.time.dt);
+  const long steps = step_count(scene.time);
   double substeps = 0.0, springs = 0.0;
   for (auto _ : state) {
     state.PauseTiming();

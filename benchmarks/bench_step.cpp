@@ -20,6 +20,7 @@
 #include "generated_scenes.hpp"
 #include "boxpile/reference/settings.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/engine_factory.hpp"
 
 namespace boxpile {
@@ -48,7 +49,7 @@ void time_steps(benchmark::State& state, const Scene& scene, const std::string& 
 void step_scene(benchmark::State& state, const std::string& scene_name, const std::string& engine,
                 const ReferenceSettings& settings) {
   const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + scene_name + ".json");
-  time_steps(state, scene, engine, settings, std::lround(scene.time.duration / scene.time.dt));
+  time_steps(state, scene, engine, settings, step_count(scene.time));
 }
 
 ReferenceSettings ode_world_step() {
@@ -96,7 +97,7 @@ void step_generated(benchmark::State& state, const Scene& scene, const std::stri
   time_steps(state, scene, engine, ReferenceSettings{}, steps);
 }
 
-long whole(const Scene& s) { return std::lround(s.time.duration / s.time.dt); }
+long whole(const Scene& s) { return step_count(s.time); }
 
 // Registered at start-up: the generated scenes are built once, here.
 const bool registered = [] {

@@ -61,6 +61,7 @@ struct OdeEngine::World {
   std::vector<BodyContact> contacts;
   std::uint64_t steps = 0;
   std::uint64_t messages_at_start = 0;
+  bool failed = false;  // an OdeError left ODE's state undefined
 };
 
 OdeEngine::World::World(const Scene& s, const ReferenceSettings& st)
@@ -301,9 +302,23 @@ void OdeEngine::World::collide_pair(dGeomID o1, dGeomID o2) {
 OdeEngine::OdeEngine(const Scene& scene, const ReferenceSettings& settings)
     : world_(std::make_unique<World>(scene, settings)) {}
 
-OdeEngine::~OdeEngine() = default;
+// After an ODE error its world may be half-way through a step (its arena in use, joints attached):
+// tearing it down could assert again while the error unwinds. Such a world is left to the
+// operating system.
+OdeEngine::~OdeEngine() {
+  if (world_ && world_->failed) static_cast<void>(world_.release());
+}
 
 void OdeEngine::step() {
+  try {
+    step_world();
+  } catch (const OdeError&) {
+    world_->failed = true;
+    throw;
+  }
+}
+
+void OdeEngine::step_world() {
   World& w = *world_;
   w.contacts.clear();
   dSpaceCollide(w.space, &w, &World::near_callback);

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "boxpile/reference/settings.hpp"
@@ -18,6 +19,15 @@ struct OdeMessageLog {
   std::string last;
 };
 OdeMessageLog ode_messages();
+
+// ODE reported an error or an internal assertion (dError, dDebug): instead of letting ODE abort
+// the process, boxpile's handlers throw this. The engine that hit it cannot be used further. The
+// scene loader's ranges (sim/limits.hpp) keep every accepted scene away from these; the command
+// line reports one as bad input (exit 2).
+class OdeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // Bodies at their centre of mass with one box geom per shape (geom offsets for compounds),
 // fixed bodies as static geoms, the ground as a plane geom, contacts as dContactApprox1 joints
@@ -41,6 +51,7 @@ class OdeEngine final : public Engine {
 
  private:
   struct World;
+  void step_world();
   std::unique_ptr<World> world_;
 };
 

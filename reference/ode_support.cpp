@@ -14,12 +14,27 @@ namespace {
 std::mutex g_message_mutex;
 OdeMessageLog g_messages;
 
-void count_ode_message(int errnum, const char* msg, va_list ap) {
+std::string format_ode_text(const char* msg, va_list ap) {
   char text[512];
   std::vsnprintf(text, sizeof text, msg, ap);
+  return text;
+}
+
+void count_ode_message(int errnum, const char* msg, va_list ap) {
+  const std::string text = format_ode_text(msg, ap);
   const std::lock_guard<std::mutex> lock(g_message_mutex);
   ++g_messages.count;
   g_messages.last = "ODE message " + std::to_string(errnum) + ": " + text;
+}
+
+// ODE calls abort() (or exit()) once an error or debug handler returns, so these never return:
+// the exception unwinds through ODE (built as C++ with exception tables) back to our caller.
+[[noreturn]] void throw_ode_error(int errnum, const char* msg, va_list ap) {
+  throw OdeError("ODE error " + std::to_string(errnum) + ": " + format_ode_text(msg, ap));
+}
+
+[[noreturn]] void throw_ode_internal_error(int errnum, const char* msg, va_list ap) {
+  throw OdeError("ODE internal assertion " + std::to_string(errnum) + ": " + format_ode_text(msg, ap));
 }
 
 }  // namespace
@@ -35,10 +50,12 @@ void ensure_ode_initialised() {
   static std::once_flag once;
   std::call_once(once, [] {
     dInitODE2(0);
-    // Messages only (such as dWorldStep's "LCP internal error, s <= 0"): ODE carries on after
-    // them. Errors and debug reports abort the process whatever the handler does, so ODE's own
-    // handlers stay in place for those.
+    // Messages (such as dWorldStep's "LCP internal error, s <= 0"): ODE carries on after them,
+    // so they are counted. Errors and internal assertions would abort the process once the
+    // handler returns, so those handlers throw OdeError instead.
     dSetMessageHandler(count_ode_message);
+    dSetErrorHandler(throw_ode_error);
+    dSetDebugHandler(throw_ode_internal_error);
   });
 }
 

@@ -104,8 +104,11 @@ expect_contains("${err}" "overlap.json")
 run_boxpile(2 run "${WORK}/missing.json" --engine ode)
 expect_contains("${err}" "missing.json")
 run_boxpile(2 run "${FIXTURES}/scenes/stack_5.json" --engine ode --dt -1)
-run_boxpile(1 run "${FIXTURES}/scenes/stack_5.json" --engine ode --duration 0.1 --out "${WORK}/no/such/dir/x.json")
-expect_contains("${err}" "x.json")
+# A missing parent directory is created; the file appears whole.
+run_boxpile(0 run "${FIXTURES}/scenes/stack_5.json" --engine ode --duration 0.1 --out "${WORK}/no/such/dir/x.json")
+if(NOT EXISTS "${WORK}/no/such/dir/x.json")
+  fail("x.json not written under new parent directories")
+endif()
 
 # --- view: a replay page for a run file ---
 run_boxpile(0 view "${WORK}/run.json")
@@ -121,6 +124,8 @@ expect_contains("${err}" "missing.json")
 expect_refused("stack_5.json" "${WORK}/scene.html" view "${FIXTURES}/scenes/stack_5.json" --out "${WORK}/scene.html")
 file(WRITE "${WORK}/broken.json" "{\"scene\": \"x\", \"engine\": \"own\", \"dt\": 0.01, \"shapes\": {\"ground\": null, \"bodies\": []}, \"frames\": []}")
 expect_refused("broken.json: frames: a recording needs at least one frame" "${WORK}/broken.html" view "${WORK}/broken.json")
-expect_refused("does not exist" "${WORK}/no" view "${WORK}/run.json" --out "${WORK}/no/such/dir/page.html")
+# A missing parent directory is created, as for every output.
+run_boxpile(0 view "${WORK}/run.json" --out "${WORK}/no/such/view/page.html")
+expect_exists("${WORK}/no/such/view/page.html")
 run_boxpile(2 view "${WORK}/run.json" --out "${WORK}/run.json")
 expect_contains("${err}" "replace its own input")

@@ -11,6 +11,7 @@
 #include "boxpile/sim/collision/box_box.hpp"
 #include "boxpile/sim/collision/box_plane.hpp"
 #include "boxpile/sim/collision/broadphase.hpp"
+#include "boxpile/sim/time_steps.hpp"
 #include "boxpile/sim/solver/step_context.hpp"
 #include "boxpile/validation/detectors.hpp"
 #include "boxpile/validation/engine_factory.hpp"
@@ -33,8 +34,6 @@ constexpr double kNegligibleDisagreement = kHullTolerance;
 // A pair passes for chaos when it first differs no earlier than this fraction of the time the
 // engines take to diverge from themselves.
 constexpr double kChaosFraction = 0.5;
-
-long step_count(const Scene& scene) { return std::lround(scene.time.duration / scene.time.dt); }
 
 long steps_per_frame(const Scene& scene, double frame_rate) {
   return std::max(1L, std::lround(1.0 / (frame_rate * scene.time.dt)));
@@ -117,7 +116,7 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   const std::unique_ptr<Engine> engine = make_engine(name, scene, settings.reference);
   const bool full = detail == RecordDetail::Full;
   const double dt = scene.time.dt;
-  const long steps = step_count(scene);
+  const long steps = step_count(scene.time);
   const double speed = collision_event_speed(scene, scene.time.dt);
 
   StateMeter meter(scene);
@@ -174,6 +173,7 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   run.final_states = loop.final_states;
   run.final_t = loop.final_t;
   run.finite = !loop.stopped;
+  if (loop.stopped) run.failure = loop.stopped->description;
   run.recording = std::move(recorder.recording());
   run.recording.stopped = loop.stopped;
   run.engine_messages = engine->messages();
@@ -428,7 +428,7 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
   CompareResult result;
   result.scene = scene;
   result.settings = settings;
-  result.steps = step_count(scene);
+  result.steps = step_count(scene.time);
   std::vector<std::string> names;
   for (const std::string& name : settings.engines) {
     check_engine_name(name);  // all of them before the first run
@@ -448,6 +448,9 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
     };
     result.runs.push_back(run_one(scene, names[e], settings, RecordDetail::Full, progress_of(false)));
     const EngineRun again = run_one(perturbed, names[e], settings, RecordDetail::StatesOnly, progress_of(true));
+    if (again.failure && !result.runs.back().failure) {
+      result.runs.back().failure = "from the perturbed start, " + *again.failure;
+    }
     Baseline b;
     b.engine = names[e];
     b.divergence = diff_runs(names[e], result.runs.back().recording.frames, names[e] + " perturbed",

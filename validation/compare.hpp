@@ -92,7 +92,10 @@ struct EngineRun {
   std::vector<ImpactEvent> events;
   std::vector<StackReport> stacks;  // at the end
   std::vector<WireReport> wires;
-  bool finite = true;  // every state finite to the end (the run stops at the first that is not)
+  bool finite = true;  // every state finite through the run
+  // Why the run stopped early: the first non-finite state (step, body, quantity), from this run
+  // or the perturbed baseline. The report marks the engine failed; the command exits 1.
+  std::optional<std::string> failure;
   std::uint64_t engine_messages = 0;  // ODE's messages during the run
   // The scene's checks (validation/stability_checks.hpp), measured at every step.
   RunMeasures measures;

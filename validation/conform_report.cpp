@@ -1,9 +1,9 @@
 #include "boxpile/validation/conform_report.hpp"
 
-#include <fstream>
 #include <sstream>
 
 #include "boxpile/validation/json_output.hpp"
+#include "boxpile/validation/report_directory.hpp"
 
 namespace boxpile {
 namespace {
@@ -113,7 +113,7 @@ void write_conform_report(const ConformRun& run, const fs::path& dir) {
     ContactQuery saved = c.query;
     saved.note = findings_text(c);
     saved.answers = {{kColliderAnswer, c.answer}};
-    write_json_file(query_json(saved), (dir / failure_file(c)).string());
+    write_report_file(dir / failure_file(c), query_json(saved).dump(2) + '\n');
   }
   const nlohmann::json doc = {{"settings", settings_json(run)},
                               {"queries", r.queries},
@@ -122,13 +122,13 @@ void write_conform_report(const ConformRun& run, const fs::path& dir) {
                               {"failures_by_kind", counts_json(r)},
                               {"failures", failures_json(r)},
                               {"seconds", run.seconds}};
-  write_json_file(doc, (dir / "conform.json").string());
-  std::ofstream md(dir / "conform.md");
+  write_report_file(dir / "conform.json", doc.dump(2) + '\n');
+  std::ostringstream md;
   write_md_heading(md, run);
   write_md_settings(md, run);
   write_md_counts(md, r);
   write_md_worst(md, r);
-  if (!md) throw std::runtime_error("cannot write " + (dir / "conform.md").string());
+  write_report_file(dir / "conform.md", md.str());
 }
 
 std::string conform_summary(const ConformRun& run) {

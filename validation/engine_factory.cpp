@@ -15,8 +15,13 @@ using Factory = std::unique_ptr<Engine> (*)(const Scene&, const ReferenceSetting
 struct EngineEntry {
   std::string_view name;
   Factory make;                  // null: not yet available
-  std::string_view unavailable;  // why, when make is null
+  std::string_view unavailable;  // why, when make is null (empty when available)
 };
+
+// Availability is read from the reason, not from `make`: GCC rejects comparing a function
+// template's address in a constant expression under -fsanitize=null (the sanitizer build), so
+// the tables below must not depend on it.
+constexpr bool available(const EngineEntry& e) { return e.unavailable.empty(); }
 
 template <class E>
 std::unique_ptr<Engine> build(const Scene& scene, const ReferenceSettings& settings) {
@@ -52,13 +57,13 @@ constexpr std::array<std::string_view, kEngines.size()> kAllNames = [] {
 }();
 
 constexpr std::size_t kAvailableCount = static_cast<std::size_t>(
-    std::count_if(kEngines.begin(), kEngines.end(), [](const EngineEntry& e) { return e.make != nullptr; }));
+    std::count_if(kEngines.begin(), kEngines.end(), available));
 
 constexpr std::array<std::string_view, kAvailableCount> kAvailableNames = [] {
   std::array<std::string_view, kAvailableCount> names{};
   std::size_t k = 0;
   for (const EngineEntry& e : kEngines)
-    if (e.make) names[k++] = e.name;
+    if (available(e)) names[k++] = e.name;
   return names;
 }();
 
@@ -76,7 +81,7 @@ std::span<const std::string_view> available_engine_names() { return kAvailableNa
 void check_engine_name(std::string_view name) {
   for (const EngineEntry& e : kEngines) {
     if (e.name != name) continue;
-    if (e.make) return;
+    if (available(e)) return;
     throw UnknownEngine("engine \"" + std::string(name) + "\": " + std::string(e.unavailable) +
                         "; available: " + available_list());
   }

@@ -9,6 +9,7 @@
 #include "boxpile/sim/engine.hpp"
 #include "boxpile/sim/io/query_loader.hpp"
 #include "boxpile/sim/math.hpp"
+#include "boxpile/validation/output_safety.hpp"
 
 namespace boxpile {
 
@@ -25,10 +26,8 @@ nlohmann::json query_json(const ContactQuery& q);
 // angular_velocity.
 nlohmann::json bodies_json(const std::vector<BodyState>& states);
 
-// Writes `doc` to `path` atomically: a temporary file beside it, then a rename, so a failure
-// never leaves a half-written file. Throws std::runtime_error naming the path.
-void write_json_file(const nlohmann::json& doc, const std::string& path);
-// The same for any text.
-void write_text_file(const std::string& text, const std::string& path);
+// Writes `doc` into an output checked and staged before the run (validation/output_safety.hpp):
+// whole or not at all. Throws OutputError naming the path.
+void write_json_file(const nlohmann::json& doc, OutputFile& out);
 
 }  // namespace boxpile

@@ -63,8 +63,8 @@ std::string replay_html(const nlohmann::json& data, const ThreeJs& three) {
   return page;
 }
 
-void write_replay_page(const nlohmann::json& data, const ThreeJs& three, const fs::path& path) {
-  write_text_file(replay_html(data, three), path.string());
+void write_replay_page(const nlohmann::json& data, const ThreeJs& three, OutputFile& out) {
+  out.commit(replay_html(data, three));
 }
 
 }  // namespace boxpile

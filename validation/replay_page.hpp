@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "boxpile/validation/output_safety.hpp"
+
 namespace boxpile {
 
 // three.js cannot be found or read (the Debian package libjs-three is missing).
@@ -29,7 +31,7 @@ ThreeJs load_three_js();
 // The page for `data` (validation/replay_data.hpp).
 std::string replay_html(const nlohmann::json& data, const ThreeJs& three);
 
-// Writes the page to `path` atomically (a temporary file beside it, then a rename).
-void write_replay_page(const nlohmann::json& data, const ThreeJs& three, const std::filesystem::path& path);
+// Writes the page into `out`, checked and staged before the work (validation/output_safety.hpp).
+void write_replay_page(const nlohmann::json& data, const ThreeJs& three, OutputFile& out);
 
 }  // namespace boxpile

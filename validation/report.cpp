@@ -10,6 +10,7 @@
 #include "boxpile/validation/json_output.hpp"
 #include "boxpile/validation/replay_data.hpp"
 #include "boxpile/validation/replay_page.hpp"
+#include "boxpile/validation/report_directory.hpp"
 
 namespace boxpile {
 namespace {
@@ -88,6 +89,7 @@ json engine_json(const CompareResult& r, const EngineRun& run, const Baseline& b
           {"events", events},
           {"wires", wires},
           {"finite", run.finite},
+          {"failure", run.failure ? nlohmann::json(*run.failure) : nlohmann::json(nullptr)},
           {"engine_messages", run.engine_messages},
           {"baseline",
            {{"perturbation", r.settings.perturbation},
@@ -396,10 +398,7 @@ void write_md_run(std::ostream& md, const CompareResult& r) {
      << fmt(r.settings.orientation_threshold) << " rad; bodies within " << fmt(r.settings.touch_tolerance)
      << " m touch\n\n";
   for (const EngineRun& run : r.runs) {
-    if (const auto& stop = run.recording.stopped) {
-      md << "**" << run.engine << " blew up: the " << stop->quantity << " of " << stop->body << " is not finite after step "
-         << stop->step << " (t = " << seconds(stop->t) << "); its run stopped there.**\n\n";
-    }
+    if (run.failure) md << "**" << run.engine << " failed: " << *run.failure << "; its run stops there.**\n\n";
     if (run.engine_messages > 0) md << run.engine << " printed " << run.engine_messages << " solver message(s).\n\n";
   }
 
@@ -548,9 +547,9 @@ void write_replay(const CompareResult& r, const json& report, const fs::path& di
   std::vector<const Recording*> runs;
   for (const EngineRun& run : r.runs) runs.push_back(&run.recording);
   const json data = replay_data(r.scene.name, runs, marks_from_report(report));
-  write_json_file(data, (dir / kReplayData).string());
+  write_report_file(dir / kReplayData, data.dump(2) + '\n');
   try {
-    write_replay_page(data, load_three_js(), dir / kReplayPage);
+    write_report_file(dir / kReplayPage, replay_html(data, load_three_js()));
   } catch (const ThreeJsMissing& e) {
     notes.push_back(std::string(kReplayPage) + " not written: " + e.what() + "; `boxpile view` makes it from " +
                     kReplayData + " once three.js is installed");
@@ -559,16 +558,10 @@ void write_replay(const CompareResult& r, const json& report, const fs::path& di
 
 void write_report(const CompareResult& r, const fs::path& dir, std::vector<std::string>& notes) {
   const json report = report_json(r);
-  {
-    std::ofstream os(dir / "report.json");
-    os << report.dump(1) << '\n';
-    if (!os.flush()) throw std::runtime_error((dir / "report.json").string() + ": write failed");
-  }
+  write_report_file(dir / "report.json", report.dump(1) + '\n');
   write_replay(r, report, dir, notes);
   const std::vector<std::string> rendered = write_plots(dir, report_plots(r), notes);
-  std::ofstream os(dir / "report.md");
-  os << report_markdown(r, rendered, notes);
-  if (!os.flush()) throw std::runtime_error((dir / "report.md").string() + ": write failed");
+  write_report_file(dir / "report.md", report_markdown(r, rendered, notes));
 }
 
 }  // namespace boxpile

@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -17,15 +18,18 @@ namespace {
 namespace fs = std::filesystem;
 
 [[noreturn]] void refuse(const fs::path& target, const std::string& why) {
-  throw ReportDirectoryError("report directory " + target.string() + ": " + why);
+  throw ReportDirectoryError(target, why);
 }
 
-void check_target(const fs::path& target, const std::string& marker) {
+void check_target(const fs::path& target, const std::vector<fs::path>& inputs,
+                  const std::string& marker) {
+  try {
+    check_output_path(target, OutputKind::Directory, inputs);
+  } catch (const OutputError& e) {
+    refuse(target, e.why());
+  }
   std::error_code ec;
-  const fs::file_status st = fs::symlink_status(target, ec);
-  if (ec && ec != std::errc::no_such_file_or_directory) refuse(target, ec.message());
-  if (!fs::exists(st)) return;
-  if (!fs::is_directory(st)) refuse(target, "exists and is not a directory");
+  if (!fs::exists(fs::symlink_status(target, ec))) return;
   const bool empty = fs::is_empty(target, ec);
   if (ec) refuse(target, ec.message());
   if (!empty && !fs::exists(target / marker)) {
@@ -36,16 +40,18 @@ void check_target(const fs::path& target, const std::string& marker) {
 
 }  // namespace
 
-ReportDirectory::ReportDirectory(fs::path target, std::string marker)
+ReportDirectory::ReportDirectory(fs::path target, const std::vector<fs::path>& inputs, std::string marker)
     : target_(std::move(target)), marker_(std::move(marker)) {
   if (target_.empty()) refuse(target_, "no directory given");
   // "out/" names the directory "out": drop the trailing separator, so that its parent is found.
   if (!target_.has_filename()) target_ = target_.parent_path();
-  check_target(target_, marker_);
-  const fs::path parent = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
-  std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec) refuse(target_, "cannot create " + parent.string() + ": " + ec.message());
+  check_target(target_, inputs, marker_);
+  fs::path parent;
+  try {
+    parent = prepare_parent(target_);
+  } catch (const OutputError& e) {
+    refuse(target, e.why());
+  }
   // A hidden sibling, so that the final rename stays on one file system.
   std::string name(1, '.');
   name += target_.filename().string();
@@ -57,6 +63,7 @@ ReportDirectory::ReportDirectory(fs::path target, std::string marker)
     refuse(target_, std::string("cannot write in ") + parent.string() + ": " + std::strerror(errno));
   }
   staging_ = fs::path(buf.data());
+  registration_ = std::make_unique<StagedPath>(staging_);
   // mkdtemp makes it private (0700); the report gets the permissions of any new directory.
   const mode_t mask = umask(0);
   umask(mask);
@@ -70,7 +77,7 @@ ReportDirectory::~ReportDirectory() {
 }
 
 void ReportDirectory::commit() {
-  check_target(target_, marker_);  // it may have changed during the run
+  check_target(target_, {}, marker_);  // it may have changed during the run
   std::error_code ec;
   if (!fs::exists(target_, ec)) {
     fs::rename(staging_, target_, ec);
@@ -96,6 +103,12 @@ void ReportDirectory::commit() {
   }
   committed_ = true;
   fs::remove_all(old, ec);
+}
+
+void write_report_file(const fs::path& file, std::string_view text) {
+  std::ofstream os(file);
+  os << text;
+  if (!os.flush()) throw std::runtime_error(file.string() + ": write failed");
 }
 
 }  // namespace boxpile

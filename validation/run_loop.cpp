@@ -3,17 +3,9 @@
 #include <chrono>
 #include <utility>
 
-namespace boxpile {
+#include "boxpile/sim/finite.hpp"
 
-std::optional<NonFiniteQuantity> first_non_finite(const std::vector<BodyState>& states) {
-  for (const BodyState& s : states) {
-    if (!s.position.allFinite()) return NonFiniteQuantity{s.name, "position"};
-    if (!s.orientation.coeffs().allFinite()) return NonFiniteQuantity{s.name, "orientation"};
-    if (!s.velocity.allFinite()) return NonFiniteQuantity{s.name, "velocity"};
-    if (!s.angular_velocity.allFinite()) return NonFiniteQuantity{s.name, "angular_velocity"};
-  }
-  return std::nullopt;
-}
+namespace boxpile {
 
 RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const RunHooks& hooks) {
   using Clock = std::chrono::steady_clock;
@@ -35,8 +27,10 @@ RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const 
     engine.step();
     stepping += Clock::now() - start;
     engine.body_states(states);
-    if (const auto bad = first_non_finite(states)) {
-      result.stopped = NonFiniteStop{k, static_cast<double>(k) * dt, bad->body, bad->quantity};
+    if (const auto bad = find_non_finite(states)) {
+      const double t = static_cast<double>(k) * dt;
+      result.stopped = NonFiniteStop{k, t, states[bad->body].name, std::string(bad->quantity),
+                                     describe_non_finite(k, t, states, *bad)};
       std::swap(before, states);  // back to the last finite states
       if (last_frame < k - 1) call(hooks.frame, k - 1);
       break;

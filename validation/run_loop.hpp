@@ -18,6 +18,7 @@ struct NonFiniteStop {
   double t = 0.0;  // s, after that step
   std::string body;
   std::string quantity;  // "position", "orientation", "velocity" or "angular_velocity"
+  std::string description;  // step, time, body and quantity in one line (sim/finite.hpp)
 };
 
 // What the hooks see. Step 0 is the start (`before` is then the start too).
@@ -45,15 +46,8 @@ struct RunLoopResult {
 };
 
 // Steps `engine` `steps` times (dt is the engine's). A step that leaves any state non-finite
-// ends the run: no hook sees that step, the last finite states are recorded as a frame (when not
+// (sim/finite.hpp) ends the run: no hook sees that step, the last finite states are recorded as a frame (when not
 // already), and the result says where it happened.
 RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const RunHooks& hooks);
-
-// The first non-finite quantity among `states` (body and quantity named), if any.
-struct NonFiniteQuantity {
-  std::string body;
-  std::string quantity;
-};
-std::optional<NonFiniteQuantity> first_non_finite(const std::vector<BodyState>& states);
 
 }  // namespace boxpile

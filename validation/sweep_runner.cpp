@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "boxpile/validation/json_output.hpp"
+#include "boxpile/validation/report_directory.hpp"
 
 namespace boxpile {
 namespace {
@@ -38,7 +39,7 @@ fs::path cell_file(const fs::path& dir, int index) { return dir / ("cell-" + std
     for (std::size_t k = static_cast<std::size_t>(w); k < cells.size(); k += static_cast<std::size_t>(jobs)) {
       CellResult r = run_cell(grid, cells[k]);
       r.jobs = jobs;
-      write_json_file(cell_json(r), cell_file(dir, cells[k].index).string());
+      write_report_file(cell_file(dir, cells[k].index), cell_json(r).dump(2) + "\n");
     }
   } catch (const std::exception& e) {
     std::cerr << "boxpile: worker " << w + 1 << ": " << e.what() << '\n';

@@ -1,5 +1,6 @@
 #include "boxpile/sim/collision/broadphase.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <numeric>
 
@@ -31,13 +32,15 @@ const std::vector<std::pair<int, int>>& SweepAndPrune::find_pairs(const std::vec
   const int n = static_cast<int>(bodies.size());
   boxes_.resize(bodies.size());
   for (int i = 0; i < n; ++i) boxes_[i] = body_aabb(bodies[i], margins[i]);
+  auto lo_x = [&](int i) { return boxes_[i].lo.x(); };
   if (static_cast<int>(order_.size()) != n) {
+    // First call (or the body count changed): a full sort, O(n log n) whatever the scene order.
     order_.resize(bodies.size());
     std::iota(order_.begin(), order_.end(), 0);
+    std::sort(order_.begin(), order_.end(), [&](int a, int b) { return lo_x(a) < lo_x(b); });
   }
 
   // Insertion sort by the lower x bound: nearly sorted from the last step.
-  auto lo_x = [&](int i) { return boxes_[i].lo.x(); };
   for (int i = 1; i < n; ++i) {
     const int moving = order_[i];
     int j = i - 1;

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/limits.hpp"
 #include "boxpile/sim/math.hpp"
 #include "boxpile/sim/scene.hpp"
 
@@ -100,10 +101,17 @@ class JsonNode {
 
 // --- readers for the value types that scenes and queries share ---
 
-// [x, y, z], finite.
+// Every vector is checked component by component for finiteness and magnitude before anything
+// (a norm, a normalisation) is computed from it; the limits are in sim/limits.hpp.
+
+// [x, y, z], each finite and at most `max_component` in magnitude (default: kMaxCoordinate).
+Vec3 read_vec3(const JsonNode& node, double max_component);
 Vec3 read_vec3(const JsonNode& node);
-// [x, y, z], each > 0 (box half extents); the error names the offending component.
-Vec3 read_half_extents(const JsonNode& node);
+// [x, y, z] whose norm is at most `max_norm` (a velocity, gravity); `unit` for the message.
+Vec3 read_bounded_vector(const JsonNode& node, double max_norm, std::string_view unit);
+// [x, y, z], each in [min_half_extent, kMaxHalfExtent] (box half extents; the default minimum is
+// a simulated box's, kMinHalfExtent); the error names the offending component.
+Vec3 read_half_extents(const JsonNode& node, double min_half_extent = limits::kMinHalfExtent);
 // [w, x, y, z], normalised; a zero quaternion is an error.
 Quat read_orientation(const JsonNode& node);
 // [x, y, z], normalised; a zero vector is an error.
@@ -112,6 +120,10 @@ Vec3 read_direction(const JsonNode& node);
 double read_non_negative(const JsonNode& node);
 // A number > 0.
 double read_positive(const JsonNode& node);
+// A number in [lo, hi]; `unit` (may be empty) for the message.
+double read_in_range(const JsonNode& node, double lo, double hi, std::string_view unit);
+// A name: non-empty, not only white space, no control characters (names are printed).
+std::string read_name(const JsonNode& node);
 // {"normal": [x, y, z], "offset": d}: both optional (default: the plane z = 0, solid below).
 HalfSpace read_half_space(const JsonNode& node);
 

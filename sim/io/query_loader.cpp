@@ -11,7 +11,7 @@ using json_input::JsonNode;
 QueryBox read_query_box(const JsonNode& node) {
   node.expect_object({"half_extents", "position", "orientation"});
   QueryBox box;
-  box.half_extents = json_input::read_half_extents(node.at("half_extents"));
+  box.half_extents = json_input::read_half_extents(node.at("half_extents"), limits::kMinQueryHalfExtent);
   box.pose.position = json_input::read_vec3(node.at("position"));
   if (const auto q = node.find("orientation")) {
     box.pose.orientation = json_input::read_orientation(*q);

@@ -8,14 +8,20 @@
 
 #include <CLI/CLI.hpp>
 
+#include "boxpile/validation/cli/run_limits.hpp"
+
 namespace boxpile::cli {
 
-// Exit codes: 0 success, 2 bad input (a scene, a query, a flag), 130 interrupted (the shell's
-// 128 + SIGINT), 1 anything else.
+// Exit codes: 0 success; 1 a run that went wrong (a non-finite state, our engine failing a check,
+// anything unexpected); 2 bad input (a scene, a query, a flag, an unusable output location, an
+// error inside ODE); 130 interrupted (the shell's 128 + SIGINT). kExitCodesHelp says it for --help.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitInterrupted = 130;
+inline constexpr const char* kExitCodesHelp =
+    "Exit codes: 0 success; 1 a run that went wrong (a non-finite state, an engine failing); 2 bad input "
+    "(scene, query, flag, unusable output location, an error inside ODE); 130 interrupted.";
 
 // `boxpile contacts QUERY.json [--reduce] [--engines LIST] [--format table|json]`: the contact
 // sets of one query from the registered detectors (and any answers saved in the file), with a
@@ -59,10 +65,11 @@ struct RunOptions {
   std::optional<double> dt;        // s; the scene's when absent
   std::optional<double> duration;  // s; the scene's when absent
   int every = 10;                  // steps between recorded frames
-  std::string out;                 // empty: print a summary instead
+  std::optional<std::string> out;  // absent: print a summary instead
   std::string ode_method = "quickstep";  // ReferenceSettings::ode_method
   std::optional<int> iterations;   // ODE QuickStep or Bullet solver iterations; the default's when absent
   std::vector<std::string> set;    // "key=value": any setting of the engine (boxpile settings)
+  RunLimits limits;
 };
 void add_run_command(CLI::App& app, RunOptions& options);
 int run_run(const RunOptions& options);
@@ -76,6 +83,7 @@ struct CompareOptions {
   std::optional<double> dt;          // s; the scene's when absent
   std::optional<double> duration;    // s; the scene's when absent
   std::string report = "boxpile-report";
+  RunLimits limits;
 };
 void add_compare_command(CLI::App& app, CompareOptions& options);
 int run_compare_command(const CompareOptions& options);

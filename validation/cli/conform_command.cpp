@@ -77,7 +77,7 @@ int run_conform_command(const ConformOptions& options) {
   run.cases = cases_folder(options);
   run.options = check_options(options, run.cases);
   // Before the run: a report directory that cannot be written fails now.
-  ReportDirectory dir(options.report, "conform.json");
+  ReportDirectory dir(options.report, {}, "conform.json");
 
   const auto start = std::chrono::steady_clock::now();
   {

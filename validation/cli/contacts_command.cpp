@@ -193,6 +193,7 @@ void add_contacts_command(CLI::App& app, ContactsOptions& options) {
 
 int run_contacts(const ContactsOptions& options) {
   if (options.serve) return serve(options);
+  check_distinct(options.engines, "--engines");
   const ContactQuery query = load_query(options.query);
   const ContactSets sets = contact_sets(options, query);
   const bool table = options.format.empty() ? isatty(STDOUT_FILENO) == 1 : options.format == kTable;

@@ -1,20 +1,24 @@
 // boxpile: run box-pile scenes in our simulator and in ODE and Bullet, and compare them.
 #include <iostream>
 
+#include "boxpile/reference/ode_engine.hpp"
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/collider_process.hpp"
 #include "boxpile/validation/detectors.hpp"
 #include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/report_directory.hpp"
 
 namespace {
 
-// Errors of the user's input (a file, a name, a folder, a collider): exit 2; anything else 1.
+// Errors of the user's input (a file, a name, a flag, an output path, a collider, a scene outside
+// what ODE can take): exit 2; anything else 1.
 bool is_bad_input(const std::exception& e) {
   return dynamic_cast<const boxpile::InputError*>(&e) || dynamic_cast<const boxpile::UnknownEngine*>(&e) ||
          dynamic_cast<const boxpile::UnknownDetector*>(&e) || dynamic_cast<const boxpile::ColliderError*>(&e) ||
-         dynamic_cast<const boxpile::ReportDirectoryError*>(&e);
+         dynamic_cast<const boxpile::OutputError*>(&e) || dynamic_cast<const boxpile::cli::UsageError*>(&e) ||
+         dynamic_cast<const boxpile::OdeError*>(&e);
 }
 
 }  // namespace
@@ -25,8 +29,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("boxpile ") + BOXPILE_VERSION);
   // No command runs the main job: compare on the default scene (the bone and the pile).
   app.require_subcommand(0, 1);
-  app.footer("Without a command, boxpile runs `compare` on fixtures/scenes/bone_hits_pile.json into "
-             "./boxpile-report/.");
+  app.footer(std::string("Without a command, boxpile runs `compare` on fixtures/scenes/bone_hits_pile.json into "
+                          "./boxpile-report/.\n") +
+             kExitCodesHelp);
 
   ContactsOptions contacts;
   add_contacts_command(app, contacts);
@@ -67,6 +72,9 @@ int main(int argc, char** argv) {
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());
+  } catch (const boxpile::OdeError& e) {
+    std::cerr << "boxpile: error: " << e.what() << " (the input is outside what ODE can take)\n";
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "boxpile: error: " << e.what() << '\n';
     return is_bad_input(e) ? kExitBadInput : kExitFailure;

@@ -1,14 +1,18 @@
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/engine_factory.hpp"
 #include "boxpile/validation/engine_settings.hpp"
 #include "boxpile/validation/json_output.hpp"
+#include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/recording.hpp"
 #include "boxpile/validation/run_loop.hpp"
 #include "boxpile/validation/state_meter.hpp"
@@ -44,6 +48,9 @@ nlohmann::json solver_json(std::string_view method, const StepStats& st, const W
           {"residual_after_shock", st.residual_after_shock},
           {"collision_events", events}};
 }
+
+// Runs at least this long show their progress on stderr.
+constexpr long kProgressMinSteps = 100'000;
 
 std::string format(double x, const char* fmt = "%.6g") {
   char buf[64];
@@ -88,11 +95,9 @@ void add_run_command(CLI::App& app, RunOptions& options) {
   cmd->add_option("scene", options.scene, "Scene file (JSON, docs/scene-format.md)")->required();
   cmd->add_option("--engine", options.engine, "Engine: own (the scene's solver.method), own-impulse, own-penalty, ode or bullet")
       ->required();
-  cmd->add_option("--dt", options.dt, "Time step in s (default: the scene's)")->check(CLI::PositiveNumber);
-  cmd->add_option("--duration", options.duration, "Simulated time in s (default: the scene's)")
-      ->check(CLI::NonNegativeNumber);
+  add_time_options(*cmd, options.dt, options.duration);
   cmd->add_option("--every", options.every, "Record a frame every K steps (and at the start)")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()))  // (PositiveNumber prints DBL_MAX in full)
       ->capture_default_str();
   cmd->add_option("--out", options.out,
                   "Write the frames as JSON to this file (atomically); without it, print a summary");
@@ -100,21 +105,25 @@ void add_run_command(CLI::App& app, RunOptions& options) {
       ->check(CLI::IsMember({"quickstep", "step"}))
       ->capture_default_str();
   cmd->add_option("--iterations", options.iterations,
-                  "Solver iterations: ODE QuickStep's (default 20) or Bullet's (default 10)")
-      ->check(CLI::PositiveNumber);
+                  "Solver iterations: ODE QuickStep's (default 20) or Bullet's (default 10)");
   cmd->add_option("--set", options.set,
                   "Any setting of the engine as key=value, repeatable (e.g. --set erp=0.8 --set cfm=1e-5 for ode); "
                   "`boxpile settings` lists them with units")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  add_limit_options(*cmd, options.limits, true);
 }
 
 int run_run(const RunOptions& options) {
-  Scene scene = load_scene(options.scene);
-  if (options.dt) scene.time.dt = *options.dt;
-  if (options.duration) scene.time.duration = *options.duration;
+  // Every check before the first step: the output location, the scene, the flags.
+  std::optional<OutputFile> out;
+  if (options.out) out.emplace(*options.out, std::vector<std::filesystem::path>{options.scene});
+  check_engine_name(options.engine);
+  if (options.iterations) check_iterations(*options.iterations, options.limits);
+  Scene scene = load_scene(options.scene, options.limits.load());
+  apply_time_options(scene, options.dt, options.duration, options.limits);
   const double dt = scene.time.dt;
-  const long steps = std::lround(scene.time.duration / dt);
+  const long steps = step_count(scene.time);
 
   ReferenceSettings settings;
   settings.ode_method = options.ode_method == "step" ? OdeStepMethod::Step : OdeStepMethod::QuickStep;
@@ -129,7 +138,7 @@ int run_run(const RunOptions& options) {
     settings = config.reference;
   }
   const std::unique_ptr<Engine> engine = make_engine(options.engine, scene, settings);
-  const bool record = !options.out.empty();
+  const bool record = out.has_value();
 
   Recorder recorder(scene, options.engine);
   std::vector<nlohmann::json> solver;  // our solver's statistics, per frame
@@ -146,21 +155,36 @@ int run_run(const RunOptions& options) {
       }
     };
   }
-  const RunLoopResult loop = run_loop(*engine, dt, steps, options.every, hooks);
-  const std::vector<BodyState>& states = loop.final_states;
-
-  if (loop.stopped) {
-    std::cerr << "boxpile: error: " << loop.stopped->quantity << " of body \"" << loop.stopped->body
-              << "\" is not finite after step " << loop.stopped->step << " (t = " << format(loop.stopped->t)
-              << " s): the run stopped there\n";
+  // Every hundredth of the run: an interrupt is noticed, and long runs show their progress.
+  ProgressPrinter progress;
+  const bool show_progress = steps >= kProgressMinSteps;
+  const long progress_every = std::max(1L, steps / 100);
+  hooks.step = [&](const StepView& v) {
+    if (v.step == 0 || v.step % progress_every != 0) return;
+    throw_if_interrupted();
+    if (show_progress) progress({options.engine, "", 0, 1, static_cast<double>(v.step) / static_cast<double>(steps)});
+  };
+  RunLoopResult loop;
+  try {
+    const InterruptScope scope;
+    loop = run_loop(*engine, dt, steps, options.every, hooks);
+  } catch (const Interrupted&) {
+    std::cerr << "\nboxpile: interrupted" << (record ? ": nothing written\n" : "\n");
+    return kExitInterrupted;
   }
+  const std::vector<BodyState>& states = loop.final_states;
+  if (loop.stopped) {
+    // Nothing after a non-finite state means anything: the run stops there, and writes nothing.
+    std::cerr << "boxpile: error: " << options.engine << ": " << loop.stopped->description
+              << (record ? "; nothing written\n" : "\n");
+  }
+
   if (engine->messages() > 0) {
     std::cerr << "boxpile: note: " << engine->name() << " reported " << engine->messages() << " message(s); the last: "
               << engine->last_message() << '\n';
   }
 
-  if (record) {
-    recorder.recording().stopped = loop.stopped;
+  if (record && !loop.stopped) {
     nlohmann::json events = nlohmann::json::array();
     if (const auto* recorded = engine->collision_events()) {
       for (const CollisionEvent& e : *recorded) {
@@ -174,7 +198,7 @@ int run_run(const RunOptions& options) {
     doc["wall_seconds"] = loop.wall_seconds;
     doc["final"] = {{"t", loop.final_t}, {"bodies", bodies_json(states)}};
     doc["events"] = std::move(events);
-    write_json_file(doc, options.out);
+    write_json_file(doc, *out);
   } else {
     std::vector<BodyContact> contacts;
     engine->contacts(contacts);

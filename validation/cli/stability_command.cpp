@@ -7,7 +7,7 @@
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/validation/cli/commands.hpp"
-#include "boxpile/validation/cli/interrupt.hpp"
+#include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/data_directory.hpp"
 #include "boxpile/validation/engine_factory.hpp"
 #include "boxpile/validation/report_directory.hpp"
@@ -75,17 +75,17 @@ int run_stability_command(const StabilityOptions& options) {
   StabilitySettings settings;
   if (!options.engines.empty()) settings.engines = options.engines;
   for (const std::string& name : settings.engines) check_engine_name(name);
-  ReportDirectory dir(options.report, "stability.json");
+  ReportDirectory dir(options.report, {}, "stability.json");
 
   StabilityPrinter printer;
   settings.progress = [&printer](const StabilityProgress& p) {
-    if (interrupted()) throw Interrupted{};
+    throw_if_interrupted();
     printer(p);
   };
   std::cerr << "boxpile stability: " << scenes.size() << " scenes in " << settings.engines.size() << " engines\n";
   StabilityResult result;
   try {
-    const InterruptGuard guard;
+    const InterruptScope scope;
     result = run_stability(scenes, settings);
   } catch (const Interrupted&) {
     std::cerr << "\nboxpile: interrupted: no report written\n";

@@ -9,7 +9,7 @@
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/validation/cli/commands.hpp"
-#include "boxpile/validation/cli/interrupt.hpp"
+#include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/engine_settings.hpp"
 #include "boxpile/validation/report_directory.hpp"
 #include "boxpile/validation/sweep_report.hpp"
@@ -36,7 +36,7 @@ std::string duration_text(double seconds) {
 
 // One line per finished cell on stderr, with the time left estimated from the cells so far.
 void print_progress(const SweepProgress& p) {
-  if (interrupted()) throw Interrupted{};
+  throw_if_interrupted();
   if (p.done == 0) return;
   const double left = p.elapsed / p.done * (p.total - p.done);
   std::string line = "  [" + std::to_string(p.done) + "/" + std::to_string(p.total) + "] " + duration_text(p.elapsed) +
@@ -95,7 +95,7 @@ int run_sweep_command(const SweepOptions& options) {
   // Everything is checked before any cell runs: the grid, its scenes, engines and settings, the
   // report directory.
   const SweepGrid grid = load_grid(options.grid);
-  ReportDirectory dir(options.report, kSweepMarker);
+  ReportDirectory dir(options.report, {options.grid}, kSweepMarker);
   const std::vector<CellSpec> all = grid_cells(grid);
   std::vector<CellSpec> cells;
   std::copy_if(all.begin(), all.end(), std::back_inserter(cells), [&](const CellSpec& c) { return in_shard(c, shard); });
@@ -124,7 +124,7 @@ int run_sweep_command(const SweepOptions& options) {
   run.work_dir = dir.staging() / "cells";
   run.progress = print_progress;
   try {
-    const InterruptGuard guard;
+    const InterruptScope scope;
     report.cells = run_sweep_cells(grid, cells, run);
   } catch (const Interrupted&) {
     std::cerr << "boxpile: interrupted: no report written\n";
@@ -145,7 +145,7 @@ int run_sweep_merge_command(const SweepOptions& options) {
     if (!fs::is_regular_file(file)) throw InputError(in, "", "no sweep.json here: not a sweep report");
     parts.push_back(read_sweep_json(file.string()));
   }
-  ReportDirectory dir(options.report, kSweepMarker);
+  ReportDirectory dir(options.report, {}, kSweepMarker);
   SweepReport merged;
   merged.grid_file = parts.front().grid_file;
   merged.grid = parts.front().grid;

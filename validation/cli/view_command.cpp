@@ -1,9 +1,11 @@
 #include <filesystem>
 #include <iostream>
+#include <vector>
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/recording.hpp"
 #include "boxpile/validation/replay_data.hpp"
 #include "boxpile/validation/replay_page.hpp"
@@ -39,11 +41,10 @@ nlohmann::json run_replay(const fs::path& file) {
   return replay_data(recording.scene + " (" + recording.engine + ")", {&recording}, {});
 }
 
-// Refuses an output path whose directory is missing or that names a directory, before any work.
-void check_output(const fs::path& out) {
-  const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent)) throw InputError(out.string(), "", "cannot write: directory " + parent.string() + " does not exist");
-  if (fs::is_directory(out)) throw InputError(out.string(), "", "cannot write: it is a directory");
+// The files a page is made from: an output may be none of them.
+std::vector<fs::path> view_inputs(const fs::path& input, bool directory) {
+  if (!directory) return {input};
+  return {input / "report.json", input / kReplayData};
 }
 
 }  // namespace
@@ -65,9 +66,9 @@ int run_view(const ViewOptions& options) {
   if (!directory && fs::absolute(out).lexically_normal() == fs::absolute(input).lexically_normal()) {
     throw InputError(out.string(), "", "the page would replace its own input");
   }
-  check_output(out);
+  OutputFile page(out, view_inputs(input, directory));  // checked and staged before any work
   const nlohmann::json data = directory ? report_replay(input) : run_replay(input);
-  write_replay_page(data, load_three_js(), out);
+  write_replay_page(data, load_three_js(), page);
   std::cout << "replay: " << fs::absolute(out).lexically_normal().string() << '\n';
   return kExitOk;
 }

@@ -1,0 +1,242 @@
+#include "boxpile/validation/output_safety.hpp"
+
+#include <dirent.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+
+namespace boxpile {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void refuse(const fs::path& target, const std::string& why) {
+  throw OutputError("output", target, why);
+}
+
+// --- the staging registry, read by signal handlers -------------------------------------------
+// Fixed storage and atomics only: a handler must not allocate or take locks.
+
+constexpr int kMaxStaged = 16;
+std::array<std::array<char, PATH_MAX>, kMaxStaged> g_staged{};
+std::array<std::atomic<bool>, kMaxStaged> g_staged_used{};
+
+std::atomic<int> g_scope_depth{0};
+volatile std::sig_atomic_t g_interrupted = 0;
+
+// Removes a file, or a directory and everything in it, with plain system calls. Used on the way
+// out of a dying process, where the C++ library cannot be trusted.
+void remove_tree(int parent_fd, const char* name) {
+  if (unlinkat(parent_fd, name, 0) == 0 || errno != EISDIR) return;
+  const int fd = openat(parent_fd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW);
+  if (fd < 0) return;
+  if (DIR* dir = fdopendir(fd)) {
+    while (const dirent* e = readdir(dir)) {
+      if (std::strcmp(e->d_name, ".") == 0 || std::strcmp(e->d_name, "..") == 0) continue;
+      remove_tree(fd, e->d_name);
+    }
+    closedir(dir);
+  } else {
+    close(fd);
+  }
+  unlinkat(parent_fd, name, AT_REMOVEDIR);
+}
+
+void remove_all_staged() {
+  for (int i = 0; i < kMaxStaged; ++i) {
+    if (g_staged_used[static_cast<std::size_t>(i)].exchange(false)) {
+      remove_tree(AT_FDCWD, g_staged[static_cast<std::size_t>(i)].data());
+    }
+  }
+}
+
+// The handlers that were in place before ours (a sanitizer's or a test framework's crash report),
+// restored for a fatal signal once the staging is gone.
+constexpr int kFatalSignals[] = {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL};
+struct sigaction g_previous[sizeof kFatalSignals / sizeof kFatalSignals[0]];
+
+// The process dies of this signal as it would have without us, once the staging is gone.
+[[noreturn]] void die_of(int sig) {
+  remove_all_staged();
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+  std::_Exit(128 + sig);
+}
+
+extern "C" void on_fatal_signal(int sig) {
+  remove_all_staged();
+  for (std::size_t i = 0; i < std::size(kFatalSignals); ++i) {
+    if (kFatalSignals[i] == sig) sigaction(sig, &g_previous[i], nullptr);
+  }
+  // Returning re-runs the faulting instruction (or, for a raised signal, the handler restored
+  // above runs when it is raised again), now under the previous handler.
+  if (sig == SIGABRT) std::raise(sig);
+}
+
+extern "C" void on_stop_signal(int sig) {
+  if (g_scope_depth.load() > 0 && !g_interrupted) {
+    g_interrupted = 1;
+    return;
+  }
+  die_of(sig);
+}
+
+void install_handlers_once() {
+  static const bool installed = [] {
+    for (std::size_t i = 0; i < std::size(kFatalSignals); ++i) {
+      struct sigaction action {};
+      action.sa_handler = on_fatal_signal;
+      sigemptyset(&action.sa_mask);
+      sigaction(kFatalSignals[i], &action, &g_previous[i]);
+    }
+    for (const int sig : {SIGINT, SIGTERM}) std::signal(sig, on_stop_signal);
+    return true;
+  }();
+  static_cast<void>(installed);
+}
+
+std::string kind_refusal(const fs::file_status& st, OutputKind kind) {
+  switch (st.type()) {
+    case fs::file_type::symlink:
+      return "is a symbolic link: refused, so that a link cannot send the output elsewhere";
+    case fs::file_type::character:
+    case fs::file_type::block:
+      return "is a device node: refused, boxpile writes only ordinary files";
+    case fs::file_type::fifo:
+      return "is a FIFO (named pipe): refused, boxpile writes only ordinary files";
+    case fs::file_type::socket:
+      return "is a socket: refused, boxpile writes only ordinary files";
+    case fs::file_type::directory:
+      return kind == OutputKind::File ? "is a directory: give a file name" : "";
+    case fs::file_type::regular:
+      return kind == OutputKind::Directory ? "exists and is not a directory" : "";
+    default:
+      return "is not an ordinary file or directory";
+  }
+}
+
+// The staging file's permissions: those of any new file (0666 less the umask), not mkstemp's 0600.
+void give_default_permissions(const fs::path& path, mode_t base) {
+  const mode_t mask = umask(0);
+  umask(mask);
+  chmod(path.c_str(), base & ~mask);
+}
+
+}  // namespace
+
+void check_output_path(const fs::path& target, OutputKind kind, const std::vector<fs::path>& inputs) {
+  if (target.empty()) refuse(target, "no path given");
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(target, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory) refuse(target, ec.message());
+  if (!fs::exists(st)) return;
+  if (const std::string why = kind_refusal(st, kind); !why.empty()) refuse(target, why);
+  for (const fs::path& input : inputs) {
+    if (fs::equivalent(target, input, ec)) {
+      refuse(target, "is the input file " + input.string() + ": refused, it would be overwritten");
+    }
+    if (kind == OutputKind::Directory) {
+      const fs::path dir = fs::weakly_canonical(target, ec);
+      const fs::path file = fs::weakly_canonical(input, ec);
+      const auto [end, ignored] = std::mismatch(dir.begin(), dir.end(), file.begin(), file.end());
+      if (end == dir.end()) refuse(target, "holds the input file " + input.string() + ": it would be deleted");
+    }
+  }
+}
+
+fs::path prepare_parent(const fs::path& target) {
+  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) refuse(target, "cannot create " + parent.string() + ": " + ec.message());
+  return parent;
+}
+
+StagedPath::StagedPath(const fs::path& path) {
+  install_handlers_once();
+  std::error_code ec;
+  const std::string absolute = fs::absolute(path, ec).string();
+  if (ec || absolute.size() >= PATH_MAX) refuse(path, "path too long");
+  for (int i = 0; i < kMaxStaged; ++i) {
+    auto& used = g_staged_used[static_cast<std::size_t>(i)];
+    if (used.load()) continue;
+    std::memcpy(g_staged[static_cast<std::size_t>(i)].data(), absolute.c_str(), absolute.size() + 1);
+    used.store(true);
+    slot_ = i;
+    return;
+  }
+  refuse(path, "too many outputs staged at once");
+}
+
+StagedPath::~StagedPath() {
+  if (slot_ >= 0) g_staged_used[static_cast<std::size_t>(slot_)].store(false);
+}
+
+OutputFile::OutputFile(fs::path target, const std::vector<fs::path>& inputs) : target_(std::move(target)) {
+  check_output_path(target_, OutputKind::File, inputs);
+  const fs::path parent = prepare_parent(target_);
+  // A hidden sibling, so that the final rename stays on one file system.
+  // (Built by appending: GCC 12 warns falsely about "." + string, -Wrestrict.)
+  std::string name(1, '.');
+  name += target_.filename().string();
+  name += ".tmp-XXXXXX";
+  std::string pattern = (parent / name).string();
+  const int fd = mkstemp(pattern.data());
+  if (fd < 0) refuse(target_, "cannot write in " + parent.string() + ": " + std::strerror(errno));
+  close(fd);
+  staging_ = pattern;
+  registration_ = std::make_unique<StagedPath>(staging_);
+}
+
+OutputFile::~OutputFile() {
+  if (committed_ || staging_.empty()) return;
+  std::error_code ignored;
+  fs::remove(staging_, ignored);
+}
+
+void OutputFile::commit(std::string_view content) {
+  const int fd = open(staging_.c_str(), O_WRONLY | O_TRUNC | O_NOFOLLOW);
+  if (fd < 0) refuse(target_, std::string("cannot write: ") + std::strerror(errno));
+  std::size_t written = 0;
+  while (written < content.size()) {
+    const ssize_t n = write(fd, content.data() + written, content.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = errno;
+      close(fd);
+      refuse(target_, std::string("write failed: ") + std::strerror(err));
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  if (fsync(fd) != 0 || close(fd) != 0) refuse(target_, std::string("write failed: ") + std::strerror(errno));
+  give_default_permissions(staging_, 0666);
+  check_output_path(target_, OutputKind::File, {});  // it may have changed during the run
+  std::error_code ec;
+  fs::rename(staging_, target_, ec);
+  if (ec) refuse(target_, "cannot rename the finished file into place: " + ec.message());
+  committed_ = true;
+}
+
+InterruptScope::InterruptScope() {
+  install_handlers_once();
+  if (g_scope_depth.fetch_add(1) == 0) g_interrupted = 0;
+}
+
+InterruptScope::~InterruptScope() { g_scope_depth.fetch_sub(1); }
+
+bool interrupted() { return g_interrupted != 0; }
+
+void throw_if_interrupted() {
+  if (g_interrupted) throw Interrupted{};
+}
+
+}  // namespace boxpile
