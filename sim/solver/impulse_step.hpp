@@ -57,7 +57,7 @@ struct ImpulseStep {
 // A resting loop (the contact loop, a level of shock propagation) has converged once no impulse
 // of a pass changes a point's velocity by more than this (m/s): 1e-9 m/s over the 1,200 steps
 // of 5 s moves a box by 5e-9 m.
-inline constexpr double kRestingConverged = 1e-9;
+inline constexpr double kRestingConverged = 1e-12;
 
 // Speculative contacts: a point `gap` = -depth > 0 apart may approach at up to gap / dt in this
 // step without touching. Returns the lowest normal velocity the step allows, min(target, -gap/dt).

@@ -2,8 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace boxpile {
+
+namespace {
+// A pass makes progress when its largest change falls below this fraction of the smallest change
+// of the level's earlier passes. A converging level gains a factor of 3 to 30 per pass (the
+// Jenga tower, a stack of 10); a cycling one repeats the same change (a Jenga level stuck at
+// 4.765e-12 m/s for 55 passes; a falling pile's levels swinging between 2e-2 and 2e-1 m/s).
+constexpr double kShockProgress = 0.9;
+// A level stops after this many passes in a row without progress: a pass that overshoots
+// before converging does not end it.
+constexpr int kShockStallPasses = 3;
+}  // namespace
 
 double approach_residual(const SolverBodies& sb, const std::vector<SolverContact>& contacts, double dt) {
   double worst = 0.0;
@@ -125,6 +137,9 @@ void ShockPropagation::solve_level(ImpulseStep& step, int l) {
     if (!(moves(c.a, l) && moves(c.b, l))) set_collision_matrix(c, moves(c.a, l), moves(c.b, l));
   }
   const int passes = step.settings().shock_passes;
+  // The smallest change a pass of this level has made so far, and the passes since it fell.
+  double lowest_change = std::numeric_limits<double>::infinity();
+  int passes_without_progress = 0;
   for (int pass = 0; pass < passes; ++pass) {
     // The largest velocity change an impulse of this pass made, |K dj|: once it is below
     // kRestingConverged the level is solved and later passes would change nothing that matters.
@@ -141,6 +156,14 @@ void ShockPropagation::solve_level(ImpulseStep& step, int l) {
     stats.shock_change[pass] = std::max(stats.shock_change[pass], largest_change);
     stats.shock_pass_count = std::max(stats.shock_pass_count, pass + 1);
     if (largest_change < kRestingConverged) break;
+    // A level that has stopped converging is cycling: more passes would repeat the same changes.
+    if (largest_change < kShockProgress * lowest_change) {
+      lowest_change = largest_change;
+      passes_without_progress = 0;
+    } else if (++passes_without_progress >= kShockStallPasses) {
+      ++stats.shock_stalled_levels;
+      break;
+    }
   }
 }
 
