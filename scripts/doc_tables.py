@@ -27,8 +27,15 @@ def replace_table(text, script, name, table, page):
     return pattern.sub(lambda m: m.group(1) + table.rstrip() + "\n" + m.group(2), text)
 
 
+def value_text(v):
+    """A setting's value as a grid writes it: true, 1e+05, quickstep."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    return format(v, "g") if isinstance(v, float) else str(v)
+
+
 def settings_text(settings):
-    return " ".join(f"{k}={v}" for k, v in settings.items())
+    return " ".join(f"{k}={value_text(v)}" for k, v in settings.items())
 
 
 def machine_line(doc, wall_seconds=None):
