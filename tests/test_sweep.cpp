@@ -221,7 +221,9 @@ TEST_CASE("A small sweep returns every cell with its cost and error", "[sweep]")
 }
 
 TEST_CASE("More iterations never make ODE's or Bullet's settled stack error worse beyond a factor", "[sweep]") {
-  // Measured (2 s): the error falls with iterations except ODE on stack_5 from 5 to 10 (x1.08).
+  // Measured (2 s, the catalogue's height error): every step lowers the error, by 2 to 20 times.
+  // Allowed: a rise by half, since ODE's QuickStep jitters at rest near 1e-4 m, and at 100
+  // iterations over 5 s its error was seen to rise again (docs/lab-report.md, 6.3).
   constexpr double kFactor = 1.5;
   // Below this the error is rounding and contact jitter, not convergence.
   constexpr double kFloor = 1e-6;  // m
