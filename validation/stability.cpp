@@ -56,13 +56,9 @@ StabilityCell run_stability_cell(const Scene& scene, std::string_view engine_nam
   cell.steps = loop.steps;
   cell.wall_seconds = loop.wall_seconds;
   cell.us_per_step = cell.steps > 0 ? 1e6 * cell.wall_seconds / static_cast<double>(cell.steps) : 0.0;
+  if (loop.stopped) monitor.stopped_non_finite();
   cell.measures = monitor.measures();
   cell.checks = monitor.evaluate();
-  // The loop ends a run at its first non-finite state, which the monitor never sees.
-  if (loop.stopped) {
-    cell.measures.finite = false;
-    cell.checks = {{"finite", 0.0, 1.0, true, false, ""}};
-  }
   cell.passed = all_passed(cell.checks);
   return cell;
 }

@@ -57,6 +57,9 @@ class RunMonitor {
   // The states after `step` steps (0: the start). Cheap enough for every step: energy, the
   // deepest penetration, displacements; nothing more is observed once a state is not finite.
   void observe(long step, const std::vector<BodyState>& states);
+  // The run stopped at a non-finite state, which run_loop never hands to observe(): the measures
+  // then say so, and evaluate() reports the failed "finite" check alone.
+  void stopped_non_finite() { m_.finite = false; }
 
   const RunMeasures& measures() const { return m_; }
   // The energy and kinetic energy last observed, J (for plots).
