@@ -19,7 +19,7 @@ World::World(const Scene& scene, std::string name)
   margins_.resize(bodies_.size());
   base_margins_.resize(bodies_.size());
   bounds_.resize(bodies_.size());
-  for (const RigidBody& b : bodies_) fixed_.push_back(b.fixed);
+  fixed_.resize(bodies_.size());
   for (const RigidBody& b : bodies_) {
     double r = 0.0;  // the farthest any box corner lies from the centre of mass
     for (const BoxShape& box : b.shapes) r = std::max(r, box.offset.norm() + box.half_extents.norm());
@@ -67,9 +67,12 @@ void World::update_margins(double dt) {
 }
 
 void World::collide_body_pairs() {
-  // Bounding boxes from the boxes just placed, so that no body's pose is composed twice.
-  for (std::size_t i = 0; i < bodies_.size(); ++i)
+  // Bounding boxes from the boxes just placed, so that no body's pose is composed twice; the
+  // fixed flags beside them, so that the sweep reads no body's whole state.
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
     bounds_[i] = boxes_aabb(placed_.of(static_cast<int>(i)), margins_[i]);
+    fixed_[i] = bodies_[i].fixed;
+  }
   CollisionSettings cs = scene_.collision;
   for (const auto& [i, j] : broadphase_.find_pairs(bounds_, fixed_)) {
     ++counters_.broadphase_pairs;

@@ -69,7 +69,7 @@ class World final : public Engine {
   std::vector<double> base_margins_;     // per body, the contact margin for its size, m
   std::vector<double> smallest_edge_;    // per body, its smallest box edge, m
   std::vector<Aabb> bounds_;             // per body, its bounding box grown by its margin
-  std::vector<char> fixed_;              // per body, 1 when fixed (for the broadphase)
+  std::vector<char> fixed_;              // per body, 1 when fixed, for the broadphase
   std::vector<CollisionEvent> events_;
   WorldCounters counters_;
   StepStats stats_;
