@@ -91,7 +91,7 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
   CLI::App* cmd = app.add_subcommand("sweep", "Run every cell of a grid of engines and settings: cost against error, "
                                               "Pareto fronts (sweep.json, sweep.csv, sweep.md, SVG plots)");
   cmd->add_option("grid", options.grid,
-                  "Grid file (JSON, docs/sweeps.md), or the name of an installed grid (accuracy_cost, lab_report)")
+                  "Grid file (JSON, docs/sweeps.md), or the name of an installed grid (accuracy_cost, lab_report, pareto, settled)")
       ->required();
   cmd->add_option("--report", options.report,
                   "Report directory, replaced as a whole when the report is complete (an existing one must be "
