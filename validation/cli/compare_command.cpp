@@ -5,7 +5,7 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/cli/commands.hpp"
-#include "boxpile/validation/output_safety.hpp"
+#include "boxpile/validation/cli/interruptible.hpp"
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/compare.hpp"
 #include "boxpile/validation/data_directory.hpp"
@@ -56,14 +56,9 @@ int run_compare_command(const CompareOptions& options) {
   };
   std::cerr << "boxpile compare: " << scene.name << " (" << scene.source << "), " << step_count(scene.time)
             << " steps per run, each engine twice\n";
-  CompareResult result;
-  try {
-    const InterruptScope scope;
-    result = run_compare(scene, settings);
-  } catch (const Interrupted&) {
-    std::cerr << "\nboxpile: interrupted: no report written\n";
-    return kExitInterrupted;
-  }
+  const std::optional<CompareResult> ran = run_interruptible([&] { return run_compare(scene, settings); });
+  if (!ran) return kExitInterrupted;
+  const CompareResult& result = *ran;
 
   std::vector<std::string> notes;
   write_report(result, dir.staging(), notes);

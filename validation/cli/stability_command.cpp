@@ -7,6 +7,7 @@
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/interruptible.hpp"
 #include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/data_directory.hpp"
 #include "boxpile/validation/engine_factory.hpp"
@@ -83,14 +84,9 @@ int run_stability_command(const StabilityOptions& options) {
     printer(p);
   };
   std::cerr << "boxpile stability: " << scenes.size() << " scenes in " << settings.engines.size() << " engines\n";
-  StabilityResult result;
-  try {
-    const InterruptScope scope;
-    result = run_stability(scenes, settings);
-  } catch (const Interrupted&) {
-    std::cerr << "\nboxpile: interrupted: no report written\n";
-    return kExitInterrupted;
-  }
+  const std::optional<StabilityResult> ran = run_interruptible([&] { return run_stability(scenes, settings); });
+  if (!ran) return kExitInterrupted;
+  const StabilityResult& result = *ran;
 
   std::vector<std::string> notes;
   write_stability_report(result, dir.staging(), notes);
