@@ -35,9 +35,6 @@ constexpr double kNegligibleDisagreement = kHullTolerance;
 // engines take to diverge from themselves.
 constexpr double kChaosFraction = 0.5;
 
-long steps_per_frame(const Scene& scene, double frame_rate) {
-  return std::max(1L, std::lround(1.0 / (frame_rate * scene.time.dt)));
-}
 
 
 // Impacts in one step of a reference engine: each contact point of the step's set approaching
@@ -165,7 +162,7 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   if (full) hooks.step = measure_step;
   hooks.frame = record;
   const RunLoopResult loop =
-      run_loop(*engine, dt, steps, steps_per_frame(scene, settings.frame_rate), hooks);
+      run_loop(*engine, dt, steps, steps_per_frame(dt, settings.frame_rate), hooks);
 
   run.steps = loop.steps;
   run.wall_seconds = loop.wall_seconds;
@@ -179,10 +176,9 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   run.engine_messages = engine->messages();
   if (!full) return run;
 
+  if (loop.stopped) monitor.stopped();
   run.measures = monitor.measures();
   run.checks = monitor.evaluate();
-  // The loop ends a run at its first non-finite state, which the monitor never sees.
-  if (loop.stopped) run.checks = {{"finite", 0.0, 1.0, true, false, ""}};
   if (const auto* recorded = engine->collision_events()) attach_impulses(*recorded, dt, run.events);
   run.wires = wires.reports();
   const std::vector<RigidBody> start = make_bodies(scene);

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "boxpile/sim/solver/step_context.hpp"
+#include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/compare.hpp"
 #include "boxpile/validation/engine_factory.hpp"
 #include "boxpile/validation/engine_settings.hpp"
@@ -116,7 +117,7 @@ CellResult run_cell(const SweepGrid& grid, const CellSpec& cell) {
   CellResult r;
   r.spec = cell;
   r.scene = gs.path;
-  r.steps = std::lround(config.scene.time.duration / cell.dt);
+  r.steps = step_count(config.scene.time);
 
   CompareSettings measured;
   measured.reference = config.reference;
