@@ -28,8 +28,8 @@ void add_compare_command(CLI::App& app, CompareOptions& options) {
   CLI::App* cmd = app.add_subcommand("compare", "Run a scene in several engines and write a report comparing them "
                                                 "(report.json, report.md, SVG plots)");
   cmd->add_option("scene", options.scene, "Scene file (JSON, docs/scene-format.md)")->required();
-  cmd->add_option("--engines", options.engines, "Comma-separated engines: own (the scene's solver.method), own-impulse, own-penalty, ode, "
-                  "bullet (default: own,ode,bullet)")->delimiter(',');
+  cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() +
+                      " (own: the scene's solver.method; default: own,ode,bullet)")->delimiter(',');
   add_time_options(*cmd, options.dt, options.duration);
   cmd->add_option("--report", options.report,
                   "Report directory, replaced as a whole when the report is complete (created if absent; an "

@@ -94,7 +94,7 @@ void print_summary(const Scene& scene, std::string_view engine, long steps, doub
 void add_run_command(CLI::App& app, RunOptions& options) {
   CLI::App* cmd = app.add_subcommand("run", "Step a scene in one engine and record the bodies' states");
   cmd->add_option("scene", options.scene, "Scene file (JSON, docs/scene-format.md)")->required();
-  cmd->add_option("--engine", options.engine, "Engine: own (the scene's solver.method), own-impulse, own-penalty, ode or bullet")
+  cmd->add_option("--engine", options.engine, "Engine: one of " + engine_choices() + " (own: the scene's solver.method)")
       ->required();
   add_time_options(*cmd, options.dt, options.duration);
   cmd->add_option("--every", options.every, "Record a frame every K steps (and at the start)")
