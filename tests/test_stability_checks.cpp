@@ -93,7 +93,7 @@ TEST_CASE("a body that passes a wall is caught, and a stopped run fails finitene
   const SceneCheckResult& wall = find(m.evaluate(), "stays_behind box");
   CHECK(wall.value == Approx(-0.31));
   CHECK_FALSE(wall.passed);
-  m.stopped();  // the run loop found a non-finite state (run_loop.hpp)
+  m.stopped_non_finite();  // the run loop found a non-finite state (run_loop.hpp)
   m.observe(2, {state({0.5, 0, 0.5})});  // not observed any more
   const std::vector<SceneCheckResult> r = m.evaluate();
   REQUIRE(r.size() == 1);

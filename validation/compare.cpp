@@ -177,7 +177,7 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
   run.engine_messages = engine->messages();
   if (!full) return run;
 
-  if (loop.stopped) monitor.stopped();
+  if (loop.stopped) monitor.stopped_non_finite();
   run.measures = monitor.measures();
   run.checks = monitor.evaluate();
   if (const auto* recorded = engine->collision_events()) attach_impulses(*recorded, dt, run.events);

@@ -94,8 +94,6 @@ void RunMonitor::observe(long step, const std::vector<BodyState>& states) {
   }
 }
 
-void RunMonitor::stopped() { m_.finite = false; }
-
 void RunMonitor::observe_rebound(const std::vector<BodyState>& states) {
   const ReboundCheck& c = *scene_.checks.rebound;
   const BodyState& s = states[static_cast<std::size_t>(c.body)];
