@@ -9,6 +9,7 @@
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/interruptible.hpp"
 #include "boxpile/validation/data_directory.hpp"
 #include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/engine_settings.hpp"
@@ -150,13 +151,9 @@ int run_sweep_command(const SweepOptions& options) {
   run.jobs = options.jobs;
   run.work_dir = dir.staging() / "cells";
   run.progress = print_progress;
-  try {
-    const InterruptScope scope;
-    report.cells = run_sweep_cells(grid, cells, run);
-  } catch (const Interrupted&) {
-    std::cerr << "boxpile: interrupted: no report written\n";
-    return kExitInterrupted;
-  }
+  auto ran = run_interruptible([&] { return run_sweep_cells(grid, cells, run); });
+  if (!ran) return kExitInterrupted;
+  report.cells = std::move(*ran);
   return finish(report, dir);
 }
 
