@@ -6,6 +6,7 @@
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/metrics.hpp"
+#include "boxpile/sim/time_steps.hpp"
 #include "boxpile/sim/world.hpp"
 
 using namespace boxpile;
@@ -17,7 +18,7 @@ Scene fixture(const std::string& name) {
   return load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + name + ".json");
 }
 
-int steps_for(const Scene& s, double seconds) { return static_cast<int>(std::lround(seconds / s.time.dt)); }
+int steps_for(const Scene& s, double seconds) { return static_cast<int>(step_count(s.time.dt, seconds)); }
 
 void run(World& w, int steps) {
   for (int k = 0; k < steps; ++k) w.step();
