@@ -33,6 +33,7 @@ void ShockPropagation::reserve(const StepStorage& storage) {
   level_start_.reserve(storage.bodies + 2);
   adjacency_.reserve(2 * storage.contacts());
   by_level_.reserve(storage.contacts());
+  level_target_.reserve(storage.contacts());
 }
 
 void ShockPropagation::run(ImpulseStep& step) {
@@ -131,10 +132,13 @@ double ShockPropagation::frozen_target(const SolverBodies& sb, const SolverConta
 void ShockPropagation::solve_level(ImpulseStep& step, int l) {
   SolverBodies& sb = step.sb;
   StepStats& stats = step.stats();
-  // Contacts that reach down to a frozen body see only the moving body's share of K.
+  // Contacts that reach down to a frozen body see only the moving body's share of K. A frozen
+  // body keeps its velocity through the level, so each contact's target is set once.
+  level_target_.resize(level_start_[l + 1] - level_start_[l]);
   for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
     SolverContact& c = step.contacts[by_level_[k]];
     if (!(moves(c.a, l) && moves(c.b, l))) set_collision_matrix(c, moves(c.a, l), moves(c.b, l));
+    level_target_[k - level_start_[l]] = allow_gap(c, frozen_target(sb, c, l), step.dt());
   }
   const int passes = step.settings().shock_passes;
   // The smallest change a pass of this level has made so far, and the passes since it fell.
@@ -146,8 +150,8 @@ void ShockPropagation::solve_level(ImpulseStep& step, int l) {
     double largest_change_sq = 0.0;
     for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
       SolverContact& c = step.contacts[by_level_[k]];
-      const double target = allow_gap(c, frozen_target(sb, c, l), step.dt());
-      const Vec3 j = resting_impulse(c, sb.relative_velocity(c), target, step.friction(), step.counters());
+      const Vec3 j = resting_impulse(c, sb.relative_velocity(c), level_target_[k - level_start_[l]], step.friction(),
+                                     step.counters());
       sb.apply(c, j, moves(c.a, l), moves(c.b, l));
       largest_change_sq = std::max(largest_change_sq, (c.K * j).squaredNorm());
     }

@@ -41,6 +41,7 @@ class ShockPropagation {
   std::vector<int> adjacency_start_, adjacency_;  // contact graph, compressed rows
   std::vector<int> by_level_;                      // contact indices sorted by level
   std::vector<int> level_start_;
+  std::vector<double> level_target_;  // per contact of the level being solved: the u_n it asks for
 };
 
 }  // namespace boxpile
