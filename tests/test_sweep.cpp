@@ -216,7 +216,7 @@ TEST_CASE("A small sweep returns every cell with its cost and error", "[sweep]")
   CHECK(results[2].convergence->contact.size() == 2);
   CHECK(results[3].convergence->contact.size() == 10);
   CHECK(results[3].convergence->collision.size() == 5);
-  CHECK(results[3].convergence->shock.size() == 10);
+  CHECK(results[3].convergence->shock.size() == static_cast<std::size_t>(SolverSettings{}.shock_passes));
   CHECK(!fs::exists(dir / "cells"));  // the workers' files are gone
 }
 
