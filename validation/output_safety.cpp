@@ -2,6 +2,7 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <limits.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -181,20 +182,50 @@ StagedPath::~StagedPath() {
   if (slot_ >= 0) g_staged_used[static_cast<std::size_t>(slot_)].store(false);
 }
 
-OutputFile::OutputFile(fs::path target, const std::vector<fs::path>& inputs) : target_(std::move(target)) {
-  check_output_path(target_, OutputKind::File, inputs);
-  const fs::path parent = prepare_parent(target_);
+Staging create_staging(const fs::path& target, const fs::path& parent, OutputKind kind) {
+  install_handlers_once();
   // A hidden sibling, so that the final rename stays on one file system.
   // (Built by appending: GCC 12 warns falsely about "." + string, -Wrestrict.)
   std::string name(1, '.');
-  name += target_.filename().string();
+  name += target.filename().string();
   name += ".tmp-XXXXXX";
   std::string pattern = (parent / name).string();
-  const int fd = mkstemp(pattern.data());
-  if (fd < 0) refuse(target_, "cannot write in " + parent.string() + ": " + std::strerror(errno));
-  close(fd);
-  staging_ = pattern;
-  registration_ = std::make_unique<StagedPath>(staging_);
+  sigset_t stop_signals, previous;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, &previous);
+  bool created = false;
+  if (kind == OutputKind::File) {
+    const int fd = mkstemp(pattern.data());
+    if (fd >= 0) close(fd);
+    created = fd >= 0;
+  } else {
+    created = mkdtemp(pattern.data()) != nullptr;
+  }
+  const int create_error = errno;
+  Staging staging;
+  if (created) {
+    staging.path = pattern;
+    try {
+      staging.registration = std::make_unique<StagedPath>(staging.path);
+    } catch (...) {
+      std::error_code ignored;
+      fs::remove(staging.path, ignored);
+      pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+      throw;
+    }
+  }
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  if (!created) refuse(target, "cannot write in " + parent.string() + ": " + std::strerror(create_error));
+  return staging;
+}
+
+OutputFile::OutputFile(fs::path target, const std::vector<fs::path>& inputs) : target_(std::move(target)) {
+  check_output_path(target_, OutputKind::File, inputs);
+  Staging staging = create_staging(target_, prepare_parent(target_), OutputKind::File);
+  staging_ = std::move(staging.path);
+  registration_ = std::move(staging.registration);
 }
 
 OutputFile::~OutputFile() {
