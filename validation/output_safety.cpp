@@ -262,7 +262,10 @@ InterruptScope::InterruptScope() {
   if (g_scope_depth.fetch_add(1) == 0) g_interrupted = 0;
 }
 
-InterruptScope::~InterruptScope() { g_scope_depth.fetch_sub(1); }
+InterruptScope::~InterruptScope() {
+  // Past the outermost scope a pending interrupt is spent: it was thrown, or nothing polled it.
+  if (g_scope_depth.fetch_sub(1) == 1) g_interrupted = 0;
+}
 
 bool interrupted() { return g_interrupted != 0; }
 
