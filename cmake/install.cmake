@@ -1,5 +1,5 @@
 # `cmake --install build --prefix P`: the libraries, the headers under P/include/boxpile/, the
-# boxpile program, the fixtures and report assets under P/share/boxpile/, and the CMake package
+# boxpile program, the fixtures, sweep grids and report assets under P/share/boxpile/, and the CMake package
 # (find_package(boxpile) gives boxpile::sim, boxpile::scene_io, boxpile::reference,
 # boxpile::judge and boxpile::validation).
 include(CMakePackageConfigHelpers)
@@ -37,10 +37,13 @@ foreach(folder sim reference validation)
 endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/boxpile.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/boxpile)
 
-# Data: every fixture, and the web assets of any report or viewer under validation/ (page
+# Data: every fixture, the sweep grids, and the web assets of any report or viewer under validation/ (page
 # templates, scripts, styles, images), folder by folder: validation/replay/viewer.js goes to
 # P/share/boxpile/replay/viewer.js, and a new asset file needs no change here.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/fixtures DESTINATION ${BOXPILE_DATA_INSTALL_DIR})
+# The sweep grids, at the same place relative to the fixtures as in the source tree: their scene
+# paths (relative to the grid file) hold, and `boxpile sweep NAME` finds them by name.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/benchmarks/grids DESTINATION ${BOXPILE_DATA_INSTALL_DIR}/benchmarks)
 file(GLOB boxpile_validation_folders LIST_DIRECTORIES true ${PROJECT_SOURCE_DIR}/validation/*)
 foreach(dir IN LISTS boxpile_validation_folders)
   file(GLOB_RECURSE assets ${dir}/*.html ${dir}/*.js ${dir}/*.css ${dir}/*.svg ${dir}/*.png)

@@ -57,7 +57,7 @@ struct SolverSettings {
   int collision_passes = 5;       // GBF collision loop passes (5-10)
   int contact_passes = 10;        // GBF contact loop passes, restitution ramped -0.9 -> 0 (10-20)
   bool shock_propagation = true;  // GBF shock propagation after the contact loop
-  int shock_passes = 10;          // most passes over one level in shock propagation (fewer once converged)
+  int shock_passes = 64;          // most passes over one level in shock propagation (fewer once converged or stalled)
   PositionIntegrator integrator = PositionIntegrator::SemiImplicitEuler;  // as ODE and Bullet
   // Points this far apart (m) are kept in the step's contact set, so that a resting face whose
   // corners rise by rounding (1e-17 m) does not lose them and tip; the solver lets such a point

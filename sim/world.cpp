@@ -18,6 +18,8 @@ World::World(const Scene& scene, std::string name)
   ground_.update_derived();
   margins_.resize(bodies_.size());
   base_margins_.resize(bodies_.size());
+  bounds_.resize(bodies_.size());
+  fixed_.resize(bodies_.size());
   for (const RigidBody& b : bodies_) {
     double r = 0.0;  // the farthest any box corner lies from the centre of mass
     for (const BoxShape& box : b.shapes) r = std::max(r, box.offset.norm() + box.half_extents.norm());
@@ -46,6 +48,13 @@ void World::step() {
 
 void World::find_contacts(double dt) {
   contacts_.clear();
+  update_margins(dt);
+  placed_.place(bodies_);
+  collide_body_pairs();
+  collide_ground();
+}
+
+void World::update_margins(double dt) {
   // Each body's speculative margin: the contact margin (the scene's, or less for small boxes)
   // plus how far any of its points can move in one step, (|v| + |omega| r) dt, so that a fast body
   // meets what it would reach within the step as a speculative contact instead of tunnelling
@@ -55,15 +64,27 @@ void World::find_contacts(double dt) {
     base_margins_[i] = std::max(scene_.collision.margin, contact_margin_for(scene_.solver, smallest_edge_[i]));
     margins_[i] = base_margins_[i] + (b.v.norm() + b.omega.norm() * bounding_radius_[i]) * dt;
   }
-  placed_.place(bodies_);
+}
+
+void World::collide_body_pairs() {
+  // Bounding boxes from the boxes just placed, so that no body's pose is composed twice; the
+  // fixed flags beside them, so that the sweep reads no body's whole state.
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    bounds_[i] = boxes_aabb(placed_.of(static_cast<int>(i)), margins_[i]);
+    fixed_[i] = bodies_[i].fixed;
+  }
   CollisionSettings cs = scene_.collision;
-  for (const auto& [i, j] : broadphase_.find_pairs(bodies_, margins_)) {
+  for (const auto& [i, j] : broadphase_.find_pairs(bounds_, fixed_)) {
     ++counters_.broadphase_pairs;
     counters_.narrowphase_calls += bodies_[i].shapes.size() * bodies_[j].shapes.size();
     cs.margin = margins_[i] + margins_[j] - std::max(base_margins_[i], base_margins_[j]);
     collide_bodies(placed_, i, j, cs, contacts_);
   }
+}
+
+void World::collide_ground() {
   if (!scene_.ground) return;
+  CollisionSettings cs = scene_.collision;
   for (int i = 0; i < static_cast<int>(bodies_.size()); ++i) {
     if (bodies_[i].fixed) continue;
     counters_.narrowphase_calls += bodies_[i].shapes.size();

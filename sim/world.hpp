@@ -48,6 +48,10 @@ class World final : public Engine {
  private:
   // The world's own stage: the contact set of a step of length dt, with speculative margins.
   void find_contacts(double dt);
+  // Its parts: each body's margin for this step; body pairs through the broadphase; the ground.
+  void update_margins(double dt);
+  void collide_body_pairs();
+  void collide_ground();
 
   Scene scene_;
   std::string name_;
@@ -64,6 +68,8 @@ class World final : public Engine {
   std::vector<double> bounding_radius_;  // per body, m
   std::vector<double> base_margins_;     // per body, the contact margin for its size, m
   std::vector<double> smallest_edge_;    // per body, its smallest box edge, m
+  std::vector<Aabb> bounds_;             // per body, its bounding box grown by its margin
+  std::vector<char> fixed_;              // per body, 1 when fixed, for the broadphase
   std::vector<CollisionEvent> events_;
   WorldCounters counters_;
   StepStats stats_;

@@ -1,6 +1,7 @@
 # The installed package as a user meets it: `cmake --install` into a temporary prefix, the
 # example consumer configured, built and run against it, and the installed boxpile running its
-# main job from an unrelated directory (it finds its default scene in P/share/boxpile).
+# main job and an installed sweep grid from an unrelated directory (it finds its default scene and
+# the grids in P/share/boxpile).
 # Arguments: -DBUILD=<boxpile build dir> -DSOURCE=<examples/consumer> -DWORK=<scratch dir>.
 
 file(REMOVE_RECURSE ${WORK})
@@ -19,7 +20,8 @@ file(MAKE_DIRECTORY ${WORK})
 run_step("install" ${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
 foreach(f include/boxpile/boxpile.hpp include/boxpile/sim/body.hpp include/boxpile/validation/judge/judge.hpp
           lib/cmake/boxpile/boxpileConfig.cmake lib/cmake/boxpile/boxpileConfigVersion.cmake bin/boxpile
-          share/boxpile/fixtures/scenes/bone_hits_pile.json share/boxpile/fixtures/contacts/touching.json)
+          share/boxpile/fixtures/scenes/bone_hits_pile.json share/boxpile/fixtures/contacts/touching.json
+          share/boxpile/benchmarks/grids/accuracy_cost.json share/boxpile/benchmarks/grids/lab_report.json)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "not installed: ${f}")
   endif()
@@ -46,4 +48,12 @@ execute_process(COMMAND ${prefix}/bin/boxpile WORKING_DIRECTORY ${WORK}/elsewher
                 OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/elsewhere/boxpile-report/report.md)
   message(FATAL_ERROR "installed boxpile with no command failed (${rc}):\n${out}\n${err}")
+endif()
+
+# An installed sweep grid, by name, from the same directory: its scene paths (relative to the
+# grid file) lead to the installed fixtures. Shard 1 of 1000 is the grid's first cell alone.
+execute_process(COMMAND ${prefix}/bin/boxpile sweep accuracy_cost --shard 1/1000 --report sweep
+                WORKING_DIRECTORY ${WORK}/elsewhere RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/elsewhere/sweep/sweep.json)
+  message(FATAL_ERROR "installed boxpile sweep accuracy_cost failed (${rc}):\n${out}\n${err}")
 endif()

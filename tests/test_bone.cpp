@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/engine_factory.hpp"
 #include "boxpile/validation/wire_check.hpp"
 
@@ -41,7 +42,7 @@ Scene fixture(const std::string& name) {
   return load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + name + ".json");
 }
 
-long steps_of(const Scene& s) { return std::lround(s.time.duration / s.time.dt); }
+long steps_of(const Scene& s) { return step_count(s.time); }
 
 // The largest distance of each wired body's anchor from its wire's line and past its ends over
 // every step of a run, and the final states.

@@ -82,3 +82,39 @@ TEST_CASE("a box lying flat on a tilted plane of any normal", "[box_plane]") {
     CHECK_THAT(c.depth, WithinAbs(0.005, 1e-12));
   }
 }
+
+TEST_CASE("the quick rejection of a box above the margin keeps every vertex the full test keeps",
+          "[box_plane]") {
+  // Boxes of any size, pose and plane whose lowest vertex lies within 1e-9 of the margin's edge,
+  // on both sides: the reported points are exactly those of testing all eight vertices.
+  std::mt19937_64 rng(test_seed(11));
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), size(0.001, 10.0), far(-100.0, 100.0);
+  std::uniform_real_distribution<double> near_edge(-1e-9, 1e-9);
+  int kept = 0, rejected = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 normal = Vec3(unit(rng), unit(rng), unit(rng)).normalized();
+    const HalfSpace plane{normal, far(rng)};
+    const double margin = k % 2 ? 0.0 : 0.01 * size(rng);
+    OrientedBox box = make_box(Vec3(size(rng), size(rng), size(rng)), Vec3(far(rng), far(rng), far(rng)),
+                               Quat::UnitRandom());
+    // Move the box along the normal so that its deepest vertex is near depth -margin.
+    box.center += (box_plane_depth(box, plane) + margin + near_edge(rng)) * normal;
+    Manifold expected;
+    for (int v = 0; v < 8; ++v) {
+      const double depth = plane.offset - plane.normal.dot(box.vertex(v));
+      if (depth >= -margin) expected.push_back({box.vertex(v) + 0.5 * depth * plane.normal, plane.normal, depth,
+                                                FeatureId::make(FeatureKind::Plane, v, 0, 0)});
+    }
+    const Manifold m = collide(box, plane, margin);
+    REQUIRE(m.size() == expected.size());
+    for (int i = 0; i < m.size(); ++i) {
+      CHECK(m[i].position == expected[i].position);
+      CHECK(m[i].depth == expected[i].depth);
+      CHECK(m[i].feature == expected[i].feature);
+    }
+    (m.empty() ? rejected : kept) += 1;
+  }
+  // Both sides of the edge were exercised.
+  CHECK(kept > 1000);
+  CHECK(rejected > 1000);
+}

@@ -20,6 +20,7 @@
 #include "boxpile/sim/finite.hpp"
 #include "boxpile/sim/limits.hpp"
 #include "boxpile/sim/scene.hpp"
+#include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/compare.hpp"
 #include "boxpile/validation/engine_factory.hpp"
 #include "boxpile/validation/output_safety.hpp"
@@ -56,7 +57,7 @@ Scene two_cubes(double mass, double h, double speed, double spin) {
 std::vector<BodyState> run_checked(const Scene& scene, const std::string& engine_name) {
   const std::unique_ptr<Engine> engine = make_engine(engine_name, scene, ReferenceSettings{});
   std::vector<BodyState> states;
-  const long steps = std::lround(scene.time.duration / scene.time.dt);
+  const long steps = step_count(scene.time);
   for (long k = 1; k <= steps; ++k) {
     engine->step();
     engine->body_states(states);

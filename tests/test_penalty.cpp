@@ -9,6 +9,7 @@
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/metrics.hpp"
+#include "boxpile/sim/time_steps.hpp"
 #include "boxpile/sim/solver/penalty_parameters.hpp"
 #include "boxpile/sim/world.hpp"
 
@@ -27,7 +28,7 @@ Scene penalty(Scene s) {
   return s;
 }
 
-int steps_for(const Scene& s, double seconds) { return static_cast<int>(std::lround(seconds / s.time.dt)); }
+int steps_for(const Scene& s, double seconds) { return static_cast<int>(step_count(s.time.dt, seconds)); }
 
 void run(World& w, double seconds) {
   for (int k = 0; k < steps_for(w.scene(), seconds); ++k) w.step();

@@ -112,27 +112,27 @@ double deepest_depth(const Manifold& m) {
   return d;
 }
 
-ContactDiff diff_contacts(const Manifold& own, const Manifold& reference, double hull_tolerance) {
+ContactDiff diff_contacts(const Manifold& base, const Manifold& other, double hull_tolerance) {
   ContactDiff d;
-  d.own_points = own.size();
-  d.reference_points = reference.size();
-  d.reference_tested = reference.size() <= own.size();
-  if (own.empty() || reference.empty()) return d;
+  d.base_points = base.size();
+  d.other_points = other.size();
+  d.other_tested = other.size() <= base.size();
+  if (base.empty() || other.empty()) return d;
 
-  const Vec3 n_own = mean_normal(own);
-  const Vec3 n_ref = mean_normal(reference);
+  const Vec3 n_base = mean_normal(base);
+  const Vec3 n_other = mean_normal(other);
   // atan2 of |sin| and cos keeps small angles accurate (acos loses them near 1).
-  d.normal_angle = std::atan2(n_own.cross(n_ref).norm(), n_own.dot(n_ref));
-  d.depth_difference = deepest_depth(reference) - deepest_depth(own);
+  d.normal_angle = std::atan2(n_base.cross(n_other).norm(), n_base.dot(n_other));
+  d.depth_difference = deepest_depth(other) - deepest_depth(base);
 
-  // The contact plane is normal to our normal.
-  const PlaneFrame frame(n_own);
-  const auto p_own = projected(own, frame);
-  const auto p_ref = projected(reference, frame);
-  d.hausdorff = std::max(one_way_hausdorff(p_own, p_ref), one_way_hausdorff(p_ref, p_own));
+  // The contact plane is normal to the base's normal.
+  const PlaneFrame frame(n_base);
+  const auto p_base = projected(base, frame);
+  const auto p_other = projected(other, frame);
+  d.hausdorff = std::max(one_way_hausdorff(p_base, p_other), one_way_hausdorff(p_other, p_base));
 
-  const auto& smaller = d.reference_tested ? p_ref : p_own;
-  const auto hull = convex_hull(d.reference_tested ? p_own : p_ref);
+  const auto& smaller = d.other_tested ? p_other : p_base;
+  const auto hull = convex_hull(d.other_tested ? p_base : p_other);
   double worst = 0.0;
   for (const auto& p : smaller) worst = std::max(worst, distance_to_hull(hull, p));
   d.hull_distance = worst;

@@ -1,7 +1,8 @@
-// Comparing two contact sets of the same query (ours against a reference engine's): point
-// counts, the angle between the normals, the difference of the deepest depths, and how the point
-// sets sit in the contact plane (Hausdorff distance, and whether the smaller set lies inside the
-// larger set's convex hull).
+// Comparing two contact sets of the same query from two detectors, another detector's set against
+// a base set (every tool takes ours as the base, and each other registered detector in turn,
+// validation/detectors.hpp): point counts, the angle between the normals, the difference of the
+// deepest depths, and how the point sets sit in the contact plane (Hausdorff distance, and whether
+// the smaller set lies inside the larger set's convex hull).
 #pragma once
 
 #include <optional>
@@ -17,21 +18,21 @@ namespace boxpile {
 inline constexpr double kHullTolerance = 1e-9;  // m
 
 struct ContactDiff {
-  int own_points = 0;
-  int reference_points = 0;
+  int base_points = 0;
+  int other_points = 0;
   // The remaining fields need points on both sides; they are empty otherwise.
   std::optional<double> normal_angle;      // rad, between the two sets' mean normals
-  std::optional<double> depth_difference;  // m, deepest reference depth - deepest own depth
+  std::optional<double> depth_difference;  // m, the other's deepest depth - the base's deepest
   std::optional<double> hausdorff;         // m, symmetric Hausdorff distance in the contact plane
   // How far the smaller set's farthest point lies outside the larger set's convex hull in the
-  // contact plane, m (0 inside). On equal counts the reference's points are tested.
+  // contact plane (normal to the base's normal), m (0 inside). On equal counts the other set's
+  // points are tested.
   std::optional<double> hull_distance;
-  bool reference_tested = true;  // the reference's points were tested against our hull
-  bool inside_hull = true;       // hull_distance <= tolerance (true when either set is empty)
+  bool other_tested = true;  // the other set's points were tested against the base's hull
+  bool inside_hull = true;   // hull_distance <= tolerance (true when either set is empty)
 };
 
-ContactDiff diff_contacts(const Manifold& own, const Manifold& reference,
-                          double hull_tolerance = kHullTolerance);
+ContactDiff diff_contacts(const Manifold& base, const Manifold& other, double hull_tolerance = kHullTolerance);
 
 // The mean normal of a contact set, normalised (zero for an empty set).
 Vec3 mean_normal(const Manifold& m);

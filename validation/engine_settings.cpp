@@ -25,6 +25,8 @@ constexpr double kMaxLength = 1e3;  // m (or m/s)
 constexpr double kSoftestSpring = 1e-6;   // N/m: softer holds nothing up
 constexpr double kStiffestSpring = 1e12;  // N/m (and N s/m for the damper)
 constexpr int kMaxPenaltySubsteps = 100000;
+// ODE's seed: any value a grid's integer (an int) can hold.
+constexpr double kLargestSeed = 2147483647;
 
 constexpr std::array<std::string_view, 2> kIntegrators = {"explicit_euler", "semi_implicit_euler"};
 constexpr std::array<std::string_view, 2> kOdeSteppers = {"quickstep", "world"};
@@ -33,6 +35,9 @@ constexpr std::array<std::string_view, 2> kOdeSteppers = {"quickstep", "world"};
 const EngineSetting kReduceToFour{
     "reduce_to_four", Kind::Boolean, "", "reduce each box-box manifold to at most 4 points", 0, 0, {},
     [](EngineConfig& c, const json& v) { c.scene.collision.reduce_to_four = v.get<bool>(); }};
+const EngineSetting kCollisionMargin{
+    "collision_margin", Kind::Number, "m", "points up to this far apart count as contacts (speculative contacts)", 0,
+    kMaxLength, {}, [](EngineConfig& c, const json& v) { c.scene.collision.margin = v.get<double>(); }};
 
 // Our impulse method (the scene's `solver` and `collision` keys, docs/scene-format.md).
 const std::array kImpulseSettings = {
@@ -64,6 +69,7 @@ const std::array kImpulseSettings = {
                                                     : PositionIntegrator::SemiImplicitEuler;
                   }},
     kReduceToFour,
+    kCollisionMargin,
 };
 
 // Our penalty method (the scene's penalty keys in `solver`, docs/penalty.md); each one left out
@@ -80,6 +86,7 @@ const std::array kPenaltySettings = {
     EngineSetting{"substeps", Kind::Integer, "", "penalty steps per scene step", 1, kMaxPenaltySubsteps, {},
                   [](EngineConfig& c, const json& v) { c.scene.solver.penalty.substeps = v.get<int>(); }},
     kReduceToFour,
+    kCollisionMargin,
 };
 
 // "own" runs each scene's method: every setting of either method (load_grid checks that a
@@ -87,7 +94,7 @@ const std::array kPenaltySettings = {
 const std::vector<EngineSetting> kOwnSettings = [] {
   std::vector<EngineSetting> all(kImpulseSettings.begin(), kImpulseSettings.end());
   for (const EngineSetting& s : kPenaltySettings) {
-    if (s.key != kReduceToFour.key) all.push_back(s);
+    if (s.key != kReduceToFour.key && s.key != kCollisionMargin.key) all.push_back(s);
   }
   return all;
 }();
@@ -130,6 +137,9 @@ const std::array kOdeSettings = {
                   [](EngineConfig& c, const json& v) {
                     c.reference.ode_wire_carriage_mass_fraction = v.get<double>();
                   }},
+    EngineSetting{"seed", Kind::Integer, "", "seed of ODE's generator, which shuffles QuickStep's constraint order", 0,
+                  kLargestSeed, {},
+                  [](EngineConfig& c, const json& v) { c.reference.ode_seed = v.get<unsigned long>(); }},
     kRestitutionThreshold,
 };
 

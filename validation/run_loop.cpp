@@ -1,12 +1,16 @@
 #include "boxpile/validation/run_loop.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <utility>
 
 #include "boxpile/sim/finite.hpp"
 #include "boxpile/validation/output_safety.hpp"
 
 namespace boxpile {
+
+long steps_per_frame(double dt, double frame_rate) { return std::max(1L, std::lround(1.0 / (frame_rate * dt))); }
 
 RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const RunHooks& hooks) {
   using Clock = std::chrono::steady_clock;

@@ -45,6 +45,10 @@ struct RunLoopResult {
   double final_t = 0.0;  // s
 };
 
+// The steps between recorded frames for `frame_rate` frames per simulated second at `dt`: at
+// least one (every step).
+long steps_per_frame(double dt, double frame_rate);
+
 // Steps `engine` `steps` times (dt is the engine's). A step that leaves any state non-finite
 // (sim/finite.hpp) ends the run: no hook sees that step, the last finite states are recorded as a frame (when not
 // already), and the result says where it happened. SIGINT or SIGTERM inside an InterruptScope

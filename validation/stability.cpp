@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/engine_factory.hpp"
 #include "boxpile/validation/run_loop.hpp"
 
@@ -16,11 +17,9 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-long step_count(const Scene& scene) { return std::lround(scene.time.duration / scene.time.dt); }
-
 // The work of a cell for the time-left estimate: steps times bodies (contacts grow with bodies).
 double work_of(const Scene& scene) {
-  return static_cast<double>(step_count(scene)) * static_cast<double>(scene.bodies.size() + 1);
+  return static_cast<double>(step_count(scene.time)) * static_cast<double>(scene.bodies.size() + 1);
 }
 
 }  // namespace
@@ -35,8 +34,8 @@ StabilityCell run_stability_cell(const Scene& scene, std::string_view engine_nam
   cell.scene = scene.name;
   cell.engine = std::string(engine_name);
   const std::unique_ptr<Engine> engine = make_engine(engine_name, scene, settings.reference);
-  const long steps = step_count(scene);
-  const long every = std::max(1L, std::lround(1.0 / (settings.frame_rate * scene.time.dt)));
+  const long steps = step_count(scene.time);
+  const long every = steps_per_frame(scene.time.dt, settings.frame_rate);
   // Progress at most about a hundred times per cell.
   const long progress_every = std::max(1L, steps / 100);
 
@@ -56,13 +55,9 @@ StabilityCell run_stability_cell(const Scene& scene, std::string_view engine_nam
   cell.steps = loop.steps;
   cell.wall_seconds = loop.wall_seconds;
   cell.us_per_step = cell.steps > 0 ? 1e6 * cell.wall_seconds / static_cast<double>(cell.steps) : 0.0;
+  if (loop.stopped) monitor.stopped_non_finite();
   cell.measures = monitor.measures();
   cell.checks = monitor.evaluate();
-  // The loop ends a run at its first non-finite state, which the monitor never sees.
-  if (loop.stopped) {
-    cell.measures.finite = false;
-    cell.checks = {{"finite", 0.0, 1.0, true, false, ""}};
-  }
   cell.passed = all_passed(cell.checks);
   return cell;
 }

@@ -5,7 +5,8 @@
 //
 // Use: build a RunMonitor from the scene, call observe() with the states at the start (step 0)
 // and after every step, then read measures() (error figures, for any tool) and evaluate() (the
-// scene's checks, pass or fail).
+// scene's checks, pass or fail). Finiteness is the run loop's (run_loop.hpp): it stops at the
+// first non-finite state, which the monitor never sees, and the runner says so with stopped_non_finite().
 #pragma once
 
 #include <optional>
@@ -54,9 +55,12 @@ class RunMonitor {
  public:
   explicit RunMonitor(const Scene& scene);
 
-  // The states after `step` steps (0: the start). Cheap enough for every step: energy, the
-  // deepest penetration, displacements; nothing more is observed once a state is not finite.
+  // The finite states after `step` steps (0: the start). Cheap enough for every step: energy,
+  // the deepest penetration, displacements.
   void observe(long step, const std::vector<BodyState>& states);
+  // The run stopped at a non-finite state, which run_loop never hands to observe(): the measures
+  // then say so, and evaluate() reports the failed "finite" check alone.
+  void stopped_non_finite() { m_.finite = false; }
 
   const RunMeasures& measures() const { return m_; }
   // The energy and kinetic energy last observed, J (for plots).

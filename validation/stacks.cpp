@@ -8,6 +8,7 @@
 #include "boxpile/sim/collision/box_plane.hpp"
 #include "boxpile/sim/collision/broadphase.hpp"
 #include "boxpile/sim/collision/collide.hpp"
+#include "boxpile/sim/finite.hpp"
 
 namespace boxpile {
 namespace {
@@ -47,7 +48,7 @@ std::vector<Stack> find_stacks(const std::vector<RigidBody>& bodies, const Scene
   std::vector<Aabb> boxes(bodies.size());
   for (int i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
-    member[ui] = stacks_with_others(scene, bodies[ui], ui) && bodies[ui].x.allFinite();
+    member[ui] = stacks_with_others(scene, bodies[ui], ui) && finite_magnitude(bodies[ui].x);
     if (!member[ui]) continue;
     boxes[ui] = body_aabb(bodies[ui], tolerance);
     for (int k = 0; k < static_cast<int>(bodies[ui].shapes.size()) && !on_ground[ui]; ++k) {

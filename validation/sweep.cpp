@@ -3,23 +3,18 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <fstream>
-#include <limits>
 #include <thread>
 
 #include "boxpile/sim/solver/step_context.hpp"
-#include "boxpile/validation/compare.hpp"
+#include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/engine_factory.hpp"
 #include "boxpile/validation/engine_settings.hpp"
+#include "boxpile/validation/run_loop.hpp"
 
 namespace boxpile {
 namespace {
-
-// A sweep measures errors at the end and over every step; frames only feed the stacks at the end,
-// so they are recorded sparsely.
-constexpr double kSweepFrameRate = 4.0;  // 1/s
 
 // Sums our solver's per-pass residuals over the steps of a run.
 class ConvergenceMeter {
@@ -71,21 +66,24 @@ class ConvergenceMeter {
   double after_shock_ = 0.0, shock_passes_ = 0.0;
 };
 
-// Steps the engine through the run, timing the steps alone; feeds our solver's statistics to
-// `meter` when given.
-double timed_run(const EngineConfig& config, const std::string& engine, long steps, ConvergenceMeter* meter) {
+// One run of the cell: the seconds spent in Engine::step() alone. The measured run (given a
+// monitor) feeds the catalogue's monitor every state, and our solver's statistics to `meter`
+// when given; reading them is outside the timed steps.
+double cell_run(const EngineConfig& config, const std::string& engine, long steps, RunMonitor* monitor,
+                ConvergenceMeter* meter) {
   const std::unique_ptr<Engine> e = make_engine(engine, config.scene, config.reference);
-  using Clock = std::chrono::steady_clock;
-  Clock::duration stepping{};
-  for (long k = 0; k < steps; ++k) {
-    const Clock::time_point start = Clock::now();
-    e->step();
-    stepping += Clock::now() - start;
-    if (meter) {
-      if (const StepStats* stats = e->solver_stats()) meter->add(*stats);
-    }
+  RunHooks hooks;
+  if (monitor) {
+    hooks.step = [&](const StepView& v) {
+      monitor->observe(v.step, v.states);
+      if (meter && v.step > 0) {
+        if (const StepStats* stats = v.engine.solver_stats()) meter->add(*stats);
+      }
+    };
   }
-  return std::chrono::duration<double>(stepping).count();
+  const RunLoopResult loop = run_loop(*e, config.scene.time.dt, steps, steps, hooks);
+  if (monitor && loop.stopped) monitor->stopped_non_finite();
+  return loop.wall_seconds;
 }
 
 std::string first_line_with(const std::string& file, const std::string& prefix) {
@@ -116,31 +114,19 @@ CellResult run_cell(const SweepGrid& grid, const CellSpec& cell) {
   CellResult r;
   r.spec = cell;
   r.scene = gs.path;
-  r.steps = std::lround(config.scene.time.duration / cell.dt);
+  r.steps = step_count(config.scene.time);
 
-  CompareSettings measured;
-  measured.reference = config.reference;
-  measured.frame_rate = kSweepFrameRate;
-  const EngineRun run = run_engine(config.scene, cell.engine, measured);
-  r.measures = measure_run(config.scene, run);
-
-  double least = run.wall_seconds;
-  r.timed_runs = 1;
   // "own-impulse" forces the method; "own" runs the scene's.
   const bool own_impulse = cell.engine == "own-impulse" ||
                            (cell.engine == "own" && config.scene.solver.method == ContactSolver::Impulse);
+  RunMonitor monitor(config.scene);
   ConvergenceMeter meter(config.scene.solver);
-  // Our impulse method's statistics come from one timed run; with a single repetition that run
-  // is added (reading them is outside the timed steps).
-  const int timed = std::max(grid.repetitions - 1, own_impulse ? 1 : 0);
-  for (int k = 0; k < timed; ++k) {
-    const double seconds = timed_run(config, cell.engine, r.steps, own_impulse && k == 0 ? &meter : nullptr);
-    if (k < grid.repetitions - 1) {
-      least = std::min(least, seconds);
-      ++r.timed_runs;
-    }
-  }
+  double least = cell_run(config, cell.engine, r.steps, &monitor, own_impulse ? &meter : nullptr);
+  r.measures = cell_measures(config.scene, monitor.measures(), monitor.evaluate());
   if (own_impulse) r.convergence = meter.mean();
+  for (r.timed_runs = 1; r.timed_runs < grid.repetitions; ++r.timed_runs) {
+    least = std::min(least, cell_run(config, cell.engine, r.steps, nullptr, nullptr));
+  }
   r.us_per_step = r.steps > 0 ? 1e6 * least / static_cast<double>(r.steps) : 0.0;
   r.us_per_simulated_second = r.us_per_step / cell.dt;
   return r;
@@ -148,8 +134,9 @@ CellResult run_cell(const SweepGrid& grid, const CellSpec& cell) {
 
 nlohmann::json cell_json(const CellResult& c) {
   nlohmann::json checks = nlohmann::json::array();
-  for (const CellCheck& k : c.measures.checks) {
-    checks.push_back({{"name", k.name}, {"value", k.value}, {"limit", k.limit}, {"passed", k.passed}});
+  for (const SceneCheckResult& k : c.measures.checks) {
+    checks.push_back({{"name", k.name}, {"value", k.value}, {"limit", k.limit}, {"at_least", k.at_least},
+                      {"passed", k.passed}, {"unit", k.unit}});
   }
   nlohmann::json j = {{"index", c.spec.index},
                       {"scene", c.scene},
@@ -185,8 +172,10 @@ CellResult cell_from_json(const nlohmann::json& j) {
   c.measures.stable = j.at("stable").get<bool>();
   c.measures.passed = j.at("passed").get<bool>();
   for (const nlohmann::json& k : j.at("checks")) {
-    c.measures.checks.push_back({k.at("name").get<std::string>(), k.at("value").is_null() ? std::nan("") : k.at("value").get<double>(),
-                                 k.at("limit").get<double>(), k.at("passed").get<bool>()});
+    c.measures.checks.push_back({k.at("name").get<std::string>(),
+                                 k.at("value").is_null() ? std::nan("") : k.at("value").get<double>(),
+                                 k.at("limit").get<double>(), k.at("at_least").get<bool>(), k.at("passed").get<bool>(),
+                                 k.at("unit").get<std::string>()});
   }
   if (j.contains("convergence")) {
     const nlohmann::json& v = j.at("convergence");

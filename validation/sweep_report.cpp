@@ -87,7 +87,7 @@ std::string sweep_csv(const SweepReport& r) {
       os << ',' << (e.is_number() ? format(e.get<double>(), "%.17g") : "");
     }
     std::string failed;
-    for (const CellCheck& k : c.measures.checks) {
+    for (const SceneCheckResult& k : c.measures.checks) {
       if (!k.passed) failed += (failed.empty() ? "" : " ") + k.name;
     }
     os << ',' << (c.measures.stable ? "true" : "false") << ',' << (c.measures.passed ? "true" : "false") << ','
@@ -192,14 +192,15 @@ std::string sweep_md(const SweepReport& r, const std::vector<std::string>& plots
   for (const CellResult& c : r.cells) {
     if (c.measures.passed) continue;
     std::string failed;
-    for (const CellCheck& k : c.measures.checks) {
-      if (!k.passed) failed += (failed.empty() ? "" : ", ") + k.name + " " + format(k.value) + " > " + format(k.limit);
+    for (const SceneCheckResult& k : c.measures.checks) {
+      if (!k.passed) failed += (failed.empty() ? "" : ", ") + describe(k);
     }
     md << "- " << c.scene << ": " << cell_label(c) << (c.measures.stable ? "" : " (**unstable**)") << ": " << failed << '\n';
     ++failing;
   }
   if (failing == 0) md << "None.\n";
-  md << "\nUnstable cells (non-finite, or total energy rising past its limit) are left off the fronts; cells that "
+  md << "\nUnstable cells (a failed check that shows instability: a non-finite state, energy rising past its limit, "
+        "resting bodies that kept moving) are left off the fronts; cells that "
         "fail another check stay on them and are marked on the plots (crosses).\n";
 
   for (const std::string& scene : scenes) {

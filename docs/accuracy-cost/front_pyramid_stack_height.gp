@@ -19,6 +19,5 @@ plot 'front_pyramid_stack_height.dat' index 0 using 1:2 with points pt 7 ps 0.5 
      'front_pyramid_stack_height.dat' index 5 using 1:2 with points pt 7 ps 0.5 lc rgb '#009E73' title 'own-impulse', \
      'front_pyramid_stack_height.dat' index 6 using 1:2 with lines lw 1.2 dt 2 lc rgb '#009E73' title 'own-impulse front', \
      'front_pyramid_stack_height.dat' index 7 using 1:2 with points pt 7 ps 0.5 lc rgb '#CC79A7' title 'own-penalty', \
-     'front_pyramid_stack_height.dat' index 8 using 1:2 with points pt 2 ps 0.9 lc rgb '#CC79A7' title 'own-penalty (fails a check)', \
-     'front_pyramid_stack_height.dat' index 9 using 1:2 with lines lw 1.2 dt 2 lc rgb '#CC79A7' title 'own-penalty front', \
-     'front_pyramid_stack_height.dat' index 10 using 1:2 with lines lw 1.5 lc rgb '#000000' title 'front over all engines'
+     'front_pyramid_stack_height.dat' index 8 using 1:2 with lines lw 1.2 dt 2 lc rgb '#CC79A7' title 'own-penalty front', \
+     'front_pyramid_stack_height.dat' index 9 using 1:2 with lines lw 1.5 lc rgb '#000000' title 'front over all engines'

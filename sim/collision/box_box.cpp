@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -35,10 +36,10 @@ constexpr double kFaceBiasAbsolute = 1e-6;  // times the largest half extent of 
 
 inline double sign_of(double x) { return x < 0.0 ? -1.0 : 1.0; }
 
-// Whether num / sqrt(len2) > bar, without the root (len2 > 0).
+// Whether num / sqrt(len2) > bar (len2 > 0), without the root and without a branch.
 inline bool exceeds(double num, double len2, double bar) {
-  if (bar >= 0.0) return num > 0.0 && num * num > bar * bar * len2;
-  return num >= 0.0 || num * num < bar * bar * len2;
+  const double num2 = num * num, bar2_len2 = bar * bar * len2;
+  return bar >= 0.0 ? (num > 0.0) & (num2 > bar2_len2) : (num >= 0.0) | (num2 < bar2_len2);
 }
 
 // The separation along each face axis of A (k = 0..2) and B (k = 3..5) and each edge axis
@@ -76,15 +77,15 @@ struct ClipPolygon {
   int n = 0;
 };
 
-// Sutherland-Hodgman: keeps into `out` the part of `in` with sign * x[axis] <= h; new edges lie
-// on side plane `plane`. In the reference frame each side plane is a coordinate bound.
-void clip(const ClipPolygon& in, int axis, double sign, double h, int plane, ClipPolygon& out) {
+// Sutherland-Hodgman: keeps into `out` the part of `in` whose signed distances `dist` beyond
+// side plane `plane` are <= 0; new edges lie on that plane.
+void clip(const ClipPolygon& in, const std::array<double, 8>& dist, int plane, ClipPolygon& out) {
   out.n = 0;
   for (int k = 0; k < in.n; ++k) {
+    const int k_next = k + 1 < in.n ? k + 1 : 0;  // no integer division
     const ClipPoint& cur = in.pts[k];
-    const ClipPoint& next = in.pts[(k + 1) % in.n];
-    const double dc = sign * cur.p[axis] - h;
-    const double dn = sign * next.p[axis] - h;
+    const double dc = dist[k];
+    const double dn = dist[k_next];
     if (dc <= 0.0) {
       // The edge leaving cur keeps its tag, unless cur lies on the plane and the polygon leaves
       // along it, or exits through it below.
@@ -95,7 +96,7 @@ void clip(const ClipPolygon& in, int axis, double sign, double h, int plane, Cli
     // (once) and makes no second, identical crossing.
     if ((dc < 0.0 && dn > 0.0) || (dc > 0.0 && dn < 0.0)) {
       const double s = dc / (dc - dn);
-      const Vec3 x = cur.p + s * (next.p - cur.p);
+      const Vec3 x = cur.p + s * (in.pts[k_next].p - cur.p);
       const int sub = cur.edge_tag < 4 ? 4 + 4 * cur.edge_tag + plane
                                        : 20 + 4 * (cur.edge_tag - 4) + plane;
       // Exiting, the polygon continues along the plane; entering, it follows cur's edge.
@@ -104,13 +105,19 @@ void clip(const ClipPolygon& in, int axis, double sign, double h, int plane, Cli
   }
 }
 
-// Clips `*cur` by the side plane sign * x[axis] <= h into `*spare` and swaps the two, or leaves
-// both alone when no point lies outside (the clip would copy the polygon and its tags unchanged).
+// Clips `*cur` by the side plane sign * x[axis] <= h (in the reference frame each side plane is a
+// coordinate bound) into `*spare` and swaps the two, or leaves both alone when no point lies
+// outside (the clip would copy the polygon and its tags unchanged). Each point's distance beyond
+// the plane is computed once, for both.
 void clip_side(ClipPolygon*& cur, ClipPolygon*& spare, int axis, double sign, double h, int plane) {
+  std::array<double, 8> dist;
   bool any_outside = false;
-  for (int k = 0; k < cur->n; ++k) any_outside |= sign * cur->pts[k].p[axis] > h;
+  for (int k = 0; k < cur->n; ++k) {
+    dist[k] = sign * cur->pts[k].p[axis] - h;
+    any_outside |= dist[k] > 0.0;
+  }
   if (!any_outside) return;
-  clip(*cur, axis, sign, h, plane, *spare);
+  clip(*cur, dist, plane, *spare);
   std::swap(cur, spare);
 }
 
@@ -219,22 +226,29 @@ Edge extreme_edge(const OrientedBox& box, int i, const Vec3& e) {
 
 namespace {
 
-SatResult separating_axis_test(const OrientedBox& a, const OrientedBox& b, const AxisTests& at,
-                               double stop_above) {
+// Inlined into its two callers: the matrices of `prepare` then stay in registers instead of being
+// stored and reloaded across a call (a stalled store-to-load forward at every query).
+[[gnu::always_inline]] inline SatResult separating_axis_test(const OrientedBox& a,
+                                                             const OrientedBox& b,
+                                                             const AxisTests& at, double stop_above) {
   const Mat3& C = at.C;
   const Mat3& absC = at.absC;
   const Vec3& t = at.t;
 
-  // Face axes, k = 0..2 for A's and 3..5 for B's; offset[k] is (cB - cA) along the axis.
+  // Face axes, k = 0..2 for A's and 3..5 for B's.
   //   A's: s = |t_i| - (a_i + sum_j b_j |C_ij|);  B's: s = |d . Bj| - (b_j + sum_i a_i |C_ij|).
-  std::array<double, 6> offset, face_sep;
+  // A row of C by scalars, summed as Eigen sums three terms (x0 + (x1 + x2)): its packets for a
+  // strided row of three cost more.
+  std::array<double, 6> face_sep;
+  std::array<double, 3> offset_b;  // (cB - cA) . Bj; along A's axes it is t
   for (int i = 0; i < 3; ++i) {
-    offset[i] = t[i];
-    face_sep[i] = std::abs(t[i]) - (a.half[i] + absC.row(i).dot(b.half));
+    const double rb = absC(i, 0) * b.half[0] + (absC(i, 1) * b.half[1] + absC(i, 2) * b.half[2]);
+    face_sep[i] = std::abs(t[i]) - (a.half[i] + rb);
   }
   for (int j = 0; j < 3; ++j) {
-    offset[3 + j] = at.d.dot(b.axes.col(j));
-    face_sep[3 + j] = std::abs(offset[3 + j]) - (b.half[j] + absC.col(j).dot(a.half));
+    offset_b[j] = at.d.dot(b.axes.col(j));
+    const double ra = absC.col(j).dot(a.half);
+    face_sep[3 + j] = std::abs(offset_b[j]) - (b.half[j] + ra);
   }
   int best_face = 0;
   for (int k = 1; k < 6 && !(face_sep[best_face] > stop_above); ++k)
@@ -242,11 +256,11 @@ SatResult separating_axis_test(const OrientedBox& a, const OrientedBox& b, const
   SatResult face;
   face.separation = face_sep[best_face];
   if (best_face < 3) {
-    face.normal = -sign_of(offset[best_face]) * a.axes.col(best_face);
+    face.normal = -sign_of(t[best_face]) * a.axes.col(best_face);
     face.kind = FeatureKind::FaceA;
     face.axis_a = best_face;
   } else {
-    face.normal = -sign_of(offset[best_face]) * b.axes.col(best_face - 3);
+    face.normal = -sign_of(offset_b[best_face - 3]) * b.axes.col(best_face - 3);
     face.kind = FeatureKind::FaceB;
     face.axis_b = best_face - 3;
   }
@@ -256,9 +270,18 @@ SatResult separating_axis_test(const OrientedBox& a, const OrientedBox& b, const
   // (mod 3):
   //   |L| = sqrt(C_i1j^2 + C_i2j^2),  (cB - cA) . L = t_i2 C_i1j - t_i1 C_i2j,
   //   rA = a_i1 |C_i2j| + a_i2 |C_i1j|,  rB = b_j1 |C_ij2| + b_j2 |C_ij1|.
-  // All nine numerators num = |(cB - cA) . L| - rA - rB and squared lengths first, without a
-  // branch, unrolled so that every index is a constant; then the scan below.
+  // An edge axis matters only if it separates more than the face axis plus the face bias (it
+  // then wins) or more than `stop_above` (the test stops). All nine numerators
+  // num = |(cB - cA) . L| - rA - rB and squared lengths are computed first, unrolled so that
+  // every index is a constant, and each axis compared with that bar by squares (num / |L| > bar)
+  // without a branch: a bit per axis that can matter. Only those (rarely more than one) take the
+  // root and the division, in axis order. The bar only rises during that scan, so an axis below
+  // it at the start can never matter later.
+  const double scale = std::max(a.half.maxCoeff(), b.half.maxCoeff());
+  const double bias = kFaceBiasRelative * std::abs(face.separation) + kFaceBiasAbsolute * scale;
+  const double edge_bar = std::min(face.separation + bias, stop_above);
   std::array<double, 9> dl, num, len2;
+  unsigned candidates = 0;
 #pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
@@ -271,20 +294,16 @@ SatResult separating_axis_test(const OrientedBox& a, const OrientedBox& b, const
       const double ra = a.half[i1] * absC(i2, j) + a.half[i2] * absC(i1, j);
       const double rb = b.half[j1] * absC(i, j2) + b.half[j2] * absC(i, j1);
       num[k] = std::abs(dl[k]) - ra - rb;
+      const bool edges_cross = len2[k] >= kParallelEdgeSin * kParallelEdgeSin;
+      candidates |= static_cast<unsigned>(edges_cross & exceeds(num[k], len2[k], edge_bar)) << k;
     }
   }
 
-  // An edge axis matters only if it separates more than the face axis plus the face bias (it
-  // then wins) or more than `stop_above` (the test stops): the root and the division are taken
-  // only for axes that beat that bar, found by comparing squares (num / |L| > bar).
-  const double scale = std::max(a.half.maxCoeff(), b.half.maxCoeff());
-  const double bias = kFaceBiasRelative * std::abs(face.separation) + kFaceBiasAbsolute * scale;
-  const double edge_bar = std::min(face.separation + bias, stop_above);
   double edge_sep = -std::numeric_limits<double>::infinity();
   int edge_k = -1;
   double edge_len = 1.0;
-  for (int k = 0; k < 9; ++k) {
-    if (len2[k] < kParallelEdgeSin * kParallelEdgeSin) continue;
+  for (; candidates != 0; candidates &= candidates - 1) {
+    const int k = std::countr_zero(candidates);
     if (!exceeds(num[k], len2[k], std::max(edge_bar, edge_sep))) continue;
     // |C| <= 1, so the plain root cannot overflow (std::hypot's care costs twice the time).
     edge_len = std::sqrt(len2[k]);

@@ -6,61 +6,91 @@
 
 namespace boxpile {
 
-Aabb body_aabb(const RigidBody& body, double margin) {
-  Aabb box{Vec3::Constant(std::numeric_limits<double>::infinity()),
-           Vec3::Constant(-std::numeric_limits<double>::infinity())};
-  for (int k = 0; k < static_cast<int>(body.shapes.size()); ++k) {
-    const Pose pose = body.shape_pose(k);
-    const Vec3 extent = pose.orientation.toRotationMatrix().cwiseAbs() *
-                        body.shapes[k].half_extents;
-    box.lo = box.lo.cwiseMin(pose.position - extent);
-    box.hi = box.hi.cwiseMax(pose.position + extent);
-  }
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Grows `box` to hold `b`. For a box of axes R and half extents h the world half extents are |R| h.
+void include(Aabb& box, const OrientedBox& b) {
+  const Vec3 extent = b.axes.cwiseAbs() * b.half;
+  box.lo = box.lo.cwiseMin(b.center - extent);
+  box.hi = box.hi.cwiseMax(b.center + extent);
+}
+
+void grow(Aabb& box, double margin) {
   box.lo.array() -= margin;
   box.hi.array() += margin;
+}
+
+}  // namespace
+
+Aabb body_aabb(const RigidBody& body, double margin) {
+  Aabb box{Vec3::Constant(kInfinity), Vec3::Constant(-kInfinity)};
+  for (int k = 0; k < static_cast<int>(body.shapes.size()); ++k)
+    include(box, OrientedBox::from(body.shape_pose(k), body.shapes[k].half_extents));
+  grow(box, margin);
+  return box;
+}
+
+Aabb boxes_aabb(std::span<const OrientedBox> boxes, double margin) {
+  Aabb box{Vec3::Constant(kInfinity), Vec3::Constant(-kInfinity)};
+  for (const OrientedBox& b : boxes) include(box, b);
+  grow(box, margin);
   return box;
 }
 
 void SweepAndPrune::reserve(const StepStorage& storage) {
-  boxes_.reserve(storage.bodies);
   order_.reserve(storage.bodies);
   pairs_.reserve(storage.pairs());
 }
 
 const std::vector<std::pair<int, int>>& SweepAndPrune::find_pairs(const std::vector<RigidBody>& bodies,
                                                                   const std::vector<double>& margins) {
-  const int n = static_cast<int>(bodies.size());
   boxes_.resize(bodies.size());
-  for (int i = 0; i < n; ++i) boxes_[i] = body_aabb(bodies[i], margins[i]);
-  auto lo_x = [&](int i) { return boxes_[i].lo.x(); };
+  fixed_.resize(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    boxes_[i] = body_aabb(bodies[i], margins[i]);
+    fixed_[i] = bodies[i].fixed;
+  }
+  return find_pairs(boxes_, fixed_);
+}
+
+void SweepAndPrune::sort_by_lower_x(const std::vector<Aabb>& boxes) {
+  const int n = static_cast<int>(boxes.size());
+  auto lo_x = [&](int i) { return boxes[i].lo.x(); };
   if (static_cast<int>(order_.size()) != n) {
     // First call (or the body count changed): a full sort, O(n log n) whatever the scene order.
-    order_.resize(bodies.size());
+    order_.resize(boxes.size());
     std::iota(order_.begin(), order_.end(), 0);
     std::sort(order_.begin(), order_.end(), [&](int a, int b) { return lo_x(a) < lo_x(b); });
   }
-
-  // Insertion sort by the lower x bound: nearly sorted from the last step.
+  // Nearly sorted from the last call: each body moves a few places at most.
   for (int i = 1; i < n; ++i) {
     const int moving = order_[i];
+    const double key = lo_x(moving);
     int j = i - 1;
-    while (j >= 0 && lo_x(order_[j]) > lo_x(moving)) {
+    while (j >= 0 && lo_x(order_[j]) > key) {
       order_[j + 1] = order_[j];
       --j;
     }
     order_[j + 1] = moving;
   }
+}
 
+const std::vector<std::pair<int, int>>& SweepAndPrune::find_pairs(const std::vector<Aabb>& boxes,
+                                                                  const std::vector<char>& fixed) {
+  sort_by_lower_x(boxes);
   // Sweep: each box meets the boxes that start before it ends along x.
+  const int n = static_cast<int>(boxes.size());
   pairs_.clear();
   for (int s = 0; s < n; ++s) {
     const int i = order_[s];
-    const Aabb& bi = boxes_[i];
+    const Aabb& bi = boxes[i];
     for (int t = s + 1; t < n; ++t) {
       const int j = order_[t];
-      const Aabb& bj = boxes_[j];
+      const Aabb& bj = boxes[j];
       if (bj.lo.x() > bi.hi.x()) break;
-      if (bodies[i].fixed && bodies[j].fixed) continue;
+      if (fixed[i] && fixed[j]) continue;
       if (bi.overlaps(bj)) pairs_.emplace_back(std::min(i, j), std::max(i, j));
     }
   }

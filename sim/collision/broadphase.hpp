@@ -2,10 +2,12 @@
 // far fewer than n^2 / 2 pairs in the narrowphase.
 #pragma once
 
+#include <span>
 #include <utility>
 #include <vector>
 
 #include "boxpile/sim/body.hpp"
+#include "boxpile/sim/collision/box.hpp"
 #include "boxpile/sim/step_storage.hpp"
 
 namespace boxpile {
@@ -18,9 +20,11 @@ struct Aabb {
   }
 };
 
-// The world bounding box of a body (all its boxes), grown by `margin` on every side. For a box
-// of axes R and half extents h the world half extents are |R| h.
+// The world bounding box of a body (all its boxes), grown by `margin` on every side.
 Aabb body_aabb(const RigidBody& body, double margin);
+// The same for boxes already placed in the world (PlacedBoxes::of): the same numbers, without
+// composing the body's pose with each shape's again.
+Aabb boxes_aabb(std::span<const OrientedBox> boxes, double margin);
 
 // Sweep-and-prune along x. Keeps its sort order between calls, so that with small motions the
 // insertion sort is nearly linear (temporal coherence), and reuses its storage: no allocation
@@ -33,9 +37,17 @@ class SweepAndPrune {
   // (margins[i], m), skipping pairs of two fixed bodies.
   const std::vector<std::pair<int, int>>& find_pairs(const std::vector<RigidBody>& bodies,
                                                      const std::vector<double>& margins);
+  // The same from bounding boxes the caller has computed (a world that has placed its boxes
+  // already), with fixed[i] != 0 for a fixed body.
+  const std::vector<std::pair<int, int>>& find_pairs(const std::vector<Aabb>& boxes,
+                                                     const std::vector<char>& fixed);
 
  private:
-  std::vector<Aabb> boxes_;
+  // Sorts order_ by the boxes' lower x bound: insertion sort from the last call's order.
+  void sort_by_lower_x(const std::vector<Aabb>& boxes);
+
+  std::vector<Aabb> boxes_;  // the bodies' boxes, for the first overload
+  std::vector<char> fixed_;  // the bodies' fixed flags, for the first overload
   std::vector<int> order_;
   std::vector<std::pair<int, int>> pairs_;
 };

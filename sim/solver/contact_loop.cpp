@@ -7,14 +7,10 @@ namespace boxpile {
 
 void contact_loop(ImpulseStep& step) {
   SolverBodies& sb = step.sb;
-  std::vector<SolverContact>& contacts = step.contacts;
-  const int passes = step.world.scene.solver.contact_passes;
-  const bool friction = step.world.scene.effects.friction;
-  const double dt = step.world.dt;
-  ImpulseCounters& counters = step.world.counters.impulses;
-  StepStats& stats = step.world.stats;
+  const int passes = step.settings().contact_passes;
+  const double dt = step.dt();
   assert(passes <= kMaxSolverPasses);
-  for (SolverContact& c : contacts) begin_resting_phase(c, sb.relative_velocity(c));
+  for (SolverContact& c : step.contacts) begin_resting_phase(c, sb.relative_velocity(c));
   for (int pass = 0; pass < passes; ++pass) {
     // e = -1 would leave velocities unchanged; the ramp starts one step above it and ends at 0,
     // slowing resting contacts gradually instead of stopping the first one met at full force.
@@ -23,15 +19,15 @@ void contact_loop(ImpulseStep& step) {
     // The residual of a pass is the largest approach met in it, each contact measured just
     // before its impulse (free: the velocity is needed anyway).
     double residual = 0.0;
-    for (SolverContact& c : contacts) {
+    for (SolverContact& c : step.contacts) {
       const Vec3 u = sb.relative_velocity(c);
       residual = std::max(residual, allow_gap(c, 0.0, dt) - c.n.dot(u));
       const double target = allow_gap(c, c.start_un < 0.0 ? -e * c.start_un : 0.0, dt);
-      const Vec3 j = resting_impulse(c, u, target, friction, counters);
+      const Vec3 j = resting_impulse(c, u, target, step.friction(), step.counters());
       sb.apply(c, j, true, true);
     }
-    stats.contact_residual[pass] = residual;
-    stats.contact_passes_used = pass + 1;
+    step.stats().contact_residual[pass] = residual;
+    step.stats().contact_passes_used = pass + 1;
   }
 }
 

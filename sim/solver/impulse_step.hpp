@@ -40,12 +40,25 @@ struct SolverBodies {
 };
 
 // The step context of the impulse loops: the world's step, the bodies as the loops see them, and
-// the step's solver contacts.
+// the step's solver contacts, with the settings and records every loop reads.
 struct ImpulseStep {
   StepContext& world;
   SolverBodies sb;
   std::vector<SolverContact>& contacts;
+
+  const SolverSettings& settings() const { return world.scene.solver; }
+  bool friction() const { return world.scene.effects.friction; }
+  bool restitution() const { return world.scene.effects.restitution; }
+  double dt() const { return world.dt; }
+  ImpulseCounters& counters() { return world.counters.impulses; }
+  StepStats& stats() { return world.stats; }
 };
+
+// A level of shock propagation has converged once no impulse of a pass changes a point's
+// velocity by more than this (m/s): 1e-12 m/s over the 100,000 steps of 417 s moves a box by
+// 4e-10 m. (At 1e-9 m/s a stack of 10 kept a residual 2e-7 m/s and drifted 1e-4 m in 100,000
+// steps: a level left unconverged starts the next step from a worse state.)
+inline constexpr double kRestingConverged = 1e-12;
 
 // Speculative contacts: a point `gap` = -depth > 0 apart may approach at up to gap / dt in this
 // step without touching. Returns the lowest normal velocity the step allows, min(target, -gap/dt).

@@ -22,11 +22,26 @@ class ShockPropagation {
   static constexpr int kUnsupported = 1 << 30;
 
  private:
+  // The stages of a run: the contact graph between movable bodies, each body's level, the
+  // contacts grouped by level, and the levels solved from the bottom up.
+  void build_graph(const ImpulseStep& step);
+  void assign_levels(const ImpulseStep& step);
+  void group_contacts_by_level(const ImpulseStep& step);
+  void solve_level(ImpulseStep& step, int level);
+
+  int level_of(int body) const { return body < 0 ? -1 : level_[body]; }
+  // Whether body moves while `level` is solved (bodies of lower levels are frozen).
+  bool moves(int body, int level) const { return body >= 0 && level_of(body) == level; }
+  // The normal velocity a contact of `level` asks for against a frozen body (see the .cpp).
+  double frozen_target(const SolverBodies& sb, const SolverContact& c, int level) const;
+
+  int top_ = -1;  // the highest level that holds a body
   std::vector<int> level_;
   std::vector<int> queue_;
   std::vector<int> adjacency_start_, adjacency_;  // contact graph, compressed rows
   std::vector<int> by_level_;                      // contact indices sorted by level
   std::vector<int> level_start_;
+  std::vector<double> level_target_;  // per contact of the level being solved: the u_n it asks for
 };
 
 }  // namespace boxpile

@@ -57,6 +57,7 @@ struct StepStats {
   // levels (a level stops once it is below 1e-9 m/s), m/s; shock_pass_count passes are recorded.
   std::array<double, kMaxSolverPasses> shock_change{};
   int shock_pass_count = 0;  // the most passes any level used
+  int shock_stalled_levels = 0;  // levels stopped because their passes no longer converged
   double residual_after_shock = 0.0;
 };
 

@@ -5,7 +5,7 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/cli/commands.hpp"
-#include "boxpile/validation/output_safety.hpp"
+#include "boxpile/validation/cli/interruptible.hpp"
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/compare.hpp"
 #include "boxpile/validation/data_directory.hpp"
@@ -28,8 +28,8 @@ void add_compare_command(CLI::App& app, CompareOptions& options) {
   CLI::App* cmd = app.add_subcommand("compare", "Run a scene in several engines and write a report comparing them "
                                                 "(report.json, report.md, SVG plots)");
   cmd->add_option("scene", options.scene, "Scene file (JSON, docs/scene-format.md)")->required();
-  cmd->add_option("--engines", options.engines, "Comma-separated engines: own (the scene's solver.method), own-impulse, own-penalty, ode, "
-                  "bullet (default: own,ode,bullet)")->delimiter(',');
+  cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() +
+                      " (own: the scene's solver.method; default: own,ode,bullet)")->delimiter(',');
   add_time_options(*cmd, options.dt, options.duration);
   cmd->add_option("--report", options.report,
                   "Report directory, replaced as a whole when the report is complete (created if absent; an "
@@ -55,14 +55,9 @@ int run_compare_command(const CompareOptions& options) {
   };
   std::cerr << "boxpile compare: " << scene.name << " (" << scene.source << "), " << step_count(scene.time)
             << " steps per run, each engine twice\n";
-  CompareResult result;
-  try {
-    const InterruptScope scope;
-    result = run_compare(scene, settings);
-  } catch (const Interrupted&) {
-    std::cerr << "\nboxpile: interrupted: no report written\n";
-    return kExitInterrupted;
-  }
+  const std::optional<CompareResult> ran = run_interruptible([&] { return run_compare(scene, settings); });
+  if (!ran) return kExitInterrupted;
+  const CompareResult& result = *ran;
 
   std::vector<std::string> notes;
   write_report(result, dir.staging(), notes);

@@ -85,6 +85,7 @@ int run_conform_command(const ConformOptions& options) {
     run.result = check_collider([&process](const ContactQuery& q) { return process.ask(q); }, run.options);
   }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  judge_detectors(run);
 
   write_conform_report(run, dir.staging());
   dir.commit();

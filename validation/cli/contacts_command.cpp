@@ -70,13 +70,13 @@ nlohmann::json optional_number(const std::optional<double>& x) {
 }
 
 nlohmann::json to_json(const ContactDiff& d, std::string_view reference) {
-  return {{"points", {{std::string(kOwn), d.own_points}, {std::string(reference), d.reference_points}}},
+  return {{"points", {{std::string(kOwn), d.base_points}, {std::string(reference), d.other_points}}},
           {"normal_angle", optional_number(d.normal_angle)},
           {"depth_difference", optional_number(d.depth_difference)},
           {"hausdorff", optional_number(d.hausdorff)},
           {"hull_distance", optional_number(d.hull_distance)},
           {"smaller_inside_hull", d.inside_hull},
-          {"tested", d.reference_tested ? std::string(reference) : std::string(kOwn)}};
+          {"tested", d.other_tested ? std::string(reference) : std::string(kOwn)}};
 }
 
 using ContactSets = std::vector<std::pair<std::string, Manifold>>;
@@ -143,8 +143,8 @@ void print_table(const ContactsOptions& options, const ContactQuery& query, cons
   for (const auto& [name, m] : sets) {
     if (name == kOwn) continue;
     const ContactDiff d = diff_contacts(*own, m);
-    std::snprintf(line, sizeof line, "%-22s %3d/%-3d %12s %12s %12s %12s\n", name.c_str(), d.own_points,
-                  d.reference_points, optional_cell(d.normal_angle, "%.2e").c_str(),
+    std::snprintf(line, sizeof line, "%-22s %3d/%-3d %12s %12s %12s %12s\n", name.c_str(), d.base_points,
+                  d.other_points, optional_cell(d.normal_angle, "%.2e").c_str(),
                   optional_cell(d.depth_difference, "%.2e").c_str(), optional_cell(d.hausdorff, "%.2e").c_str(),
                   optional_cell(d.hull_distance, "%.2e").c_str());
     std::cout << line;

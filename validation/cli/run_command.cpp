@@ -8,6 +8,7 @@
 #include "boxpile/sim/solver/step_context.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/interruptible.hpp"
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/engine_factory.hpp"
 #include "boxpile/validation/engine_settings.hpp"
@@ -93,7 +94,7 @@ void print_summary(const Scene& scene, std::string_view engine, long steps, doub
 void add_run_command(CLI::App& app, RunOptions& options) {
   CLI::App* cmd = app.add_subcommand("run", "Step a scene in one engine and record the bodies' states");
   cmd->add_option("scene", options.scene, "Scene file (JSON, docs/scene-format.md)")->required();
-  cmd->add_option("--engine", options.engine, "Engine: own (the scene's solver.method), own-impulse, own-penalty, ode or bullet")
+  cmd->add_option("--engine", options.engine, "Engine: one of " + engine_choices() + " (own: the scene's solver.method)")
       ->required();
   add_time_options(*cmd, options.dt, options.duration);
   cmd->add_option("--every", options.every, "Record a frame every K steps (and at the start)")
@@ -165,14 +166,10 @@ int run_run(const RunOptions& options) {
       progress({options.engine, "", 0, 1, static_cast<double>(v.step) / static_cast<double>(steps)});
     };
   }
-  RunLoopResult loop;
-  try {
-    const InterruptScope scope;
-    loop = run_loop(*engine, dt, steps, options.every, hooks);
-  } catch (const Interrupted&) {
-    std::cerr << "\nboxpile: interrupted" << (record ? ": nothing written\n" : "\n");
-    return kExitInterrupted;
-  }
+  const std::optional<RunLoopResult> ran =
+      run_interruptible([&] { return run_loop(*engine, dt, steps, options.every, hooks); }, record ? "nothing written" : "");
+  if (!ran) return kExitInterrupted;
+  const RunLoopResult& loop = *ran;
   const std::vector<BodyState>& states = loop.final_states;
   if (loop.stopped) {
     // Nothing after a non-finite state means anything: the run stops there, and writes nothing.

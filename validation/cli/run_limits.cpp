@@ -2,6 +2,7 @@
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/time_steps.hpp"
+#include "boxpile/validation/engine_factory.hpp"
 
 namespace boxpile::cli {
 
@@ -17,6 +18,12 @@ void add_limit_options(CLI::App& cmd, RunLimits& limits, bool iterations) {
         ->check(CLI::Range(1, 1'000'000'000))
         ->capture_default_str();
   }
+}
+
+std::string engine_choices() {
+  std::string list;
+  for (const std::string_view name : available_engine_names()) list += (list.empty() ? "" : ", ") + std::string(name);
+  return list;
 }
 
 void add_time_options(CLI::App& cmd, std::optional<double>& dt, std::optional<double>& duration) {

@@ -35,6 +35,10 @@ struct RunLimits {
 // --max-steps and --max-bodies (and --max-iterations when `iterations` is true).
 void add_limit_options(CLI::App& cmd, RunLimits& limits, bool iterations);
 
+// "own, own-impulse, own-penalty, ode, bullet": the engines make_engine() can build, for help
+// texts (validation/engine_factory.hpp), so that they list exactly the names accepted.
+std::string engine_choices();
+
 // --dt and --duration (no CLI11 check: NaN would pass it; apply_time_options checks).
 void add_time_options(CLI::App& cmd, std::optional<double>& dt, std::optional<double>& duration);
 

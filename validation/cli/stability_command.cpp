@@ -7,6 +7,7 @@
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/interruptible.hpp"
 #include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/data_directory.hpp"
 #include "boxpile/validation/engine_factory.hpp"
@@ -57,7 +58,7 @@ void add_stability_command(CLI::App& app, StabilityOptions& options) {
       "stability", "Run the catalogue of hard scenes in every engine and judge each run by the scene's checks "
                    "(stability.json, stability.md, plots of failing cells). Exit 0 when our engine passes every "
                    "scene, 1 when it fails one (the reference engines' failures are reported, never fatal)");
-  cmd->add_option("--engines", options.engines, "Comma-separated engines (default: own,ode,bullet)")->delimiter(',');
+  cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() + " (default: own,ode,bullet)")->delimiter(',');
   cmd->add_option("--scenes", options.scenes, "Scene files or directories of them (default: fixtures/hard/)");
   cmd->add_option("--report", options.report,
                   "Report directory, replaced as a whole when the report is complete (created if absent; an "
@@ -83,14 +84,9 @@ int run_stability_command(const StabilityOptions& options) {
     printer(p);
   };
   std::cerr << "boxpile stability: " << scenes.size() << " scenes in " << settings.engines.size() << " engines\n";
-  StabilityResult result;
-  try {
-    const InterruptScope scope;
-    result = run_stability(scenes, settings);
-  } catch (const Interrupted&) {
-    std::cerr << "\nboxpile: interrupted: no report written\n";
-    return kExitInterrupted;
-  }
+  const std::optional<StabilityResult> ran = run_interruptible([&] { return run_stability(scenes, settings); });
+  if (!ran) return kExitInterrupted;
+  const StabilityResult& result = *ran;
 
   std::vector<std::string> notes;
   write_stability_report(result, dir.staging(), notes);

@@ -9,6 +9,8 @@
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/interruptible.hpp"
+#include "boxpile/validation/data_directory.hpp"
 #include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/engine_settings.hpp"
 #include "boxpile/validation/report_directory.hpp"
@@ -22,6 +24,8 @@ namespace fs = std::filesystem;
 
 // The file that marks a directory as a sweep report (and so safe to replace).
 constexpr const char* kSweepMarker = "sweep.json";
+// The grids installed with boxpile, under its data folder.
+constexpr const char* kInstalledGrids = "benchmarks/grids";
 
 std::string format(double x, const char* fmt) {
   char buf[64];
@@ -49,6 +53,27 @@ void print_progress(const SweepProgress& p) {
   std::cerr << line << '\n';
 }
 
+// The grid file: GRID as given when it exists; a bare name (no folder) that is no file here names
+// one of the grids installed with boxpile (P/share/boxpile/benchmarks/grids, with or without
+// ".json"). InputError naming GRID and the installed grids otherwise.
+std::string find_grid(const std::string& grid) {
+  std::error_code ec;
+  if (fs::exists(grid, ec) || fs::path(grid).has_parent_path()) return grid;
+  const fs::path installed = data_path(kInstalledGrids);
+  for (const fs::path& candidate : {installed / grid, installed / (grid + ".json")}) {
+    if (fs::is_regular_file(candidate, ec)) return candidate.string();
+  }
+  std::vector<std::string> names;
+  for (const fs::directory_entry& e : fs::directory_iterator(installed, ec)) {
+    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  std::string known;
+  for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+  throw InputError(grid, "", "no such grid file, and no installed grid of that name in " + installed.string() +
+                                 (known.empty() ? "" : " (installed: " + known + ")"));
+}
+
 int finish(const SweepReport& report, ReportDirectory& dir) {
   std::vector<std::string> warnings;
   write_sweep_report(report, dir.staging(), warnings);
@@ -66,7 +91,9 @@ int finish(const SweepReport& report, ReportDirectory& dir) {
 void add_sweep_command(CLI::App& app, SweepOptions& options) {
   CLI::App* cmd = app.add_subcommand("sweep", "Run every cell of a grid of engines and settings: cost against error, "
                                               "Pareto fronts (sweep.json, sweep.csv, sweep.md, SVG plots)");
-  cmd->add_option("grid", options.grid, "Grid file (JSON, docs/sweeps.md)")->required();
+  cmd->add_option("grid", options.grid,
+                  "Grid file (JSON, docs/sweeps.md), or the name of an installed grid (accuracy_cost, lab_report, pareto, settled)")
+      ->required();
   cmd->add_option("--report", options.report,
                   "Report directory, replaced as a whole when the report is complete (an existing one must be "
                   "empty or hold a previous sweep report)")
@@ -94,14 +121,15 @@ int run_sweep_command(const SweepOptions& options) {
   }
   // Everything is checked before any cell runs: the grid, its scenes, engines and settings, the
   // report directory.
-  const SweepGrid grid = load_grid(options.grid);
-  ReportDirectory dir(options.report, {options.grid}, kSweepMarker);
+  const std::string grid_file = find_grid(options.grid);
+  const SweepGrid grid = load_grid(grid_file);
+  ReportDirectory dir(options.report, {grid_file}, kSweepMarker);
   const std::vector<CellSpec> all = grid_cells(grid);
   std::vector<CellSpec> cells;
   std::copy_if(all.begin(), all.end(), std::back_inserter(cells), [&](const CellSpec& c) { return in_shard(c, shard); });
 
   SweepReport report;
-  report.grid_file = options.grid;
+  report.grid_file = grid_file;
   report.grid = grid.document;
   report.grid_cells = static_cast<int>(all.size());
   const std::string shard_text = std::to_string(shard.index) + "/" + std::to_string(shard.count);
@@ -115,7 +143,7 @@ int run_sweep_command(const SweepOptions& options) {
                            " processes: their timings include that competition (shard " + shard_text + ")");
   }
 
-  std::cerr << "boxpile sweep: " << options.grid << ": " << cells.size() << " cells";
+  std::cerr << "boxpile sweep: " << grid_file << ": " << cells.size() << " cells";
   if (shard.count > 1) std::cerr << " (shard " << shard_text << " of " << all.size() << ")";
   std::cerr << ", " << grid.repetitions << " timed runs each" << (options.jobs > 1 ? ", " + std::to_string(options.jobs) + " processes" : "")
             << '\n';
@@ -123,13 +151,9 @@ int run_sweep_command(const SweepOptions& options) {
   run.jobs = options.jobs;
   run.work_dir = dir.staging() / "cells";
   run.progress = print_progress;
-  try {
-    const InterruptScope scope;
-    report.cells = run_sweep_cells(grid, cells, run);
-  } catch (const Interrupted&) {
-    std::cerr << "boxpile: interrupted: no report written\n";
-    return kExitInterrupted;
-  }
+  auto ran = run_interruptible([&] { return run_sweep_cells(grid, cells, run); });
+  if (!ran) return kExitInterrupted;
+  report.cells = std::move(*ran);
   return finish(report, dir);
 }
 
