@@ -91,6 +91,10 @@ extern "C" void on_stop_signal(int sig) {
   die_of(sig);
 }
 
+void install_stop_handlers() {
+  for (const int sig : {SIGINT, SIGTERM}) std::signal(sig, on_stop_signal);
+}
+
 void install_handlers_once() {
   static const bool installed = [] {
     for (std::size_t i = 0; i < std::size(kFatalSignals); ++i) {
@@ -99,7 +103,7 @@ void install_handlers_once() {
       sigemptyset(&action.sa_mask);
       sigaction(kFatalSignals[i], &action, &g_previous[i]);
     }
-    for (const int sig : {SIGINT, SIGTERM}) std::signal(sig, on_stop_signal);
+    install_stop_handlers();
     return true;
   }();
   static_cast<void>(installed);
@@ -259,7 +263,12 @@ void OutputFile::commit(std::string_view content) {
 
 InterruptScope::InterruptScope() {
   install_handlers_once();
-  if (g_scope_depth.fetch_add(1) == 0) g_interrupted = 0;
+  // The outermost scope installs the SIGINT/SIGTERM handlers again: something else (a test
+  // framework) may have replaced them since.
+  if (g_scope_depth.fetch_add(1) == 0) {
+    g_interrupted = 0;
+    install_stop_handlers();
+  }
 }
 
 InterruptScope::~InterruptScope() {
