@@ -194,11 +194,15 @@ Staging create_staging(const fs::path& target, const fs::path& parent, OutputKin
   name += target.filename().string();
   name += ".tmp-XXXXXX";
   std::string pattern = (parent / name).string();
-  sigset_t stop_signals, previous;
-  sigemptyset(&stop_signals);
-  sigaddset(&stop_signals, SIGINT);
-  sigaddset(&stop_signals, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &stop_signals, &previous);
+  // Signals sent from outside are held until the staging is registered: one arriving between
+  // its creation and its registration would leave it behind. (SIGABRT is among them, as another
+  // process may send it; abort() itself unblocks it, and the faults are never blocked.)
+  sigset_t held_signals, previous;
+  sigemptyset(&held_signals);
+  sigaddset(&held_signals, SIGINT);
+  sigaddset(&held_signals, SIGTERM);
+  sigaddset(&held_signals, SIGABRT);
+  pthread_sigmask(SIG_BLOCK, &held_signals, &previous);
   bool created = false;
   if (kind == OutputKind::File) {
     const int fd = mkstemp(pattern.data());
