@@ -6,7 +6,8 @@
 namespace boxpile {
 
 void contact_loop(ImpulseStep& step) {
-  SolverBodies& sb = step.sb;
+  SolverBodyArray& sb = step.resting;
+  sb.gather(step.sb.bodies);
   const int passes = step.settings().contact_passes;
   const double dt = step.dt();
   assert(passes <= kMaxSolverPasses);
@@ -24,11 +25,12 @@ void contact_loop(ImpulseStep& step) {
       residual = std::max(residual, allow_gap(c, 0.0, dt) - c.n.dot(u));
       const double target = allow_gap(c, c.start_un < 0.0 ? -e * c.start_un : 0.0, dt);
       const Vec3 j = resting_impulse(c, u, target, step.friction(), step.counters());
-      sb.apply(c, j, true, true);
+      sb.apply(c, j);
     }
     step.stats().contact_residual[pass] = residual;
     step.stats().contact_passes_used = pass + 1;
   }
+  sb.scatter(step.sb.bodies);
 }
 
 }  // namespace boxpile

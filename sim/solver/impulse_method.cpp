@@ -11,6 +11,7 @@ ImpulseMethod::ImpulseMethod(std::size_t body_count) {
   start_omega_.resize(body_count);
   const StepStorage storage{body_count};
   solver_contacts_.reserve(storage.contacts());
+  resting_bodies_.reserve(body_count);
   shock_.reserve(storage);
   recovery_.reserve(storage);
 }
@@ -25,7 +26,7 @@ void ImpulseMethod::step(StepContext& ctx) {
 
   // 1. The contact set (found by the world), as the solver sees it through the whole step.
   prepare_solver_contacts(ctx);
-  ImpulseStep step{ctx, SolverBodies{bodies, ctx.ground}, solver_contacts_};
+  ImpulseStep step{ctx, SolverBodies{bodies, ctx.ground}, resting_bodies_, solver_contacts_};
   ctx.stats = StepStats{};
 
   // 2. Collision loop: resolve approaching contacts with the scene's restitution.

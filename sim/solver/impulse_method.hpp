@@ -8,6 +8,7 @@
 #include "boxpile/sim/solver/impulse.hpp"
 #include "boxpile/sim/solver/recovery.hpp"
 #include "boxpile/sim/solver/shock_propagation.hpp"
+#include "boxpile/sim/solver/solver_body.hpp"
 #include "boxpile/sim/step_storage.hpp"
 
 namespace boxpile {
@@ -23,6 +24,7 @@ class ImpulseMethod final : public ContactMethod {
   void integrate_positions(StepContext& ctx);
 
   std::vector<SolverContact> solver_contacts_;
+  SolverBodyArray resting_bodies_;  // the resting phases' compact bodies
   ShockPropagation shock_;
   PenetrationRecovery recovery_;
   std::vector<Vec3> start_v_, start_omega_;  // velocities at the step's start (explicit Euler)

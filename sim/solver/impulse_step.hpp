@@ -8,6 +8,7 @@
 
 #include "boxpile/sim/body.hpp"
 #include "boxpile/sim/solver/impulse.hpp"
+#include "boxpile/sim/solver/solver_body.hpp"
 #include "boxpile/sim/solver/step_context.hpp"
 
 namespace boxpile {
@@ -39,11 +40,13 @@ struct SolverBodies {
   }
 };
 
-// The step context of the impulse loops: the world's step, the bodies as the loops see them, and
+// The step context of the impulse loops: the world's step, the bodies as the loops see them
+// (the resting phases through their compact array, gathered and scattered around each phase), and
 // the step's solver contacts, with the settings and records every loop reads.
 struct ImpulseStep {
   StepContext& world;
   SolverBodies sb;
+  SolverBodyArray& resting;
   std::vector<SolverContact>& contacts;
 
   const SolverSettings& settings() const { return world.scene.solver; }

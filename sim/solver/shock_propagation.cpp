@@ -42,7 +42,9 @@ void ShockPropagation::run(ImpulseStep& step) {
   group_contacts_by_level(step);
   // Solve level by level with e = 0; bodies below the level are frozen (infinite mass), so
   // nothing pushes back down the pile and the stack's weight is carried by the ground.
+  step.resting.gather(step.sb.bodies);
   for (int l = 0; l <= top_; ++l) solve_level(step, l);
+  step.resting.scatter(step.sb.bodies);
   step.stats().shock_levels = top_ + 1;
   step.stats().residual_after_shock = approach_residual(step.sb, step.contacts, step.dt());
 }
@@ -117,20 +119,14 @@ void ShockPropagation::group_contacts_by_level(const ImpulseStep& step) {
 // stopped: its own normal velocity must not fall below min(0, the frozen point's), so the
 // target for the relative u_n is min(0, -w) with w the frozen point's velocity along the
 // direction from it to the moving body.
-double ShockPropagation::frozen_target(const SolverBodies& sb, const SolverContact& c, int level) const {
-  if (moves(c.a, level) && !moves(c.b, level)) {
-    const RigidBody& b = sb.get(c.b);
-    return std::min(0.0, -c.n.dot(b.v + b.omega.cross(c.rb)));
-  }
-  if (moves(c.b, level) && !moves(c.a, level)) {
-    const RigidBody& a = sb.get(c.a);
-    return std::min(0.0, c.n.dot(a.v + a.omega.cross(c.ra)));
-  }
+double ShockPropagation::frozen_target(const SolverBodyArray& sb, const SolverContact& c, int level) const {
+  if (moves(c.a, level) && !moves(c.b, level)) return std::min(0.0, -c.n.dot(sb.point_velocity(c.b, c.rb)));
+  if (moves(c.b, level) && !moves(c.a, level)) return std::min(0.0, c.n.dot(sb.point_velocity(c.a, c.ra)));
   return 0.0;
 }
 
 void ShockPropagation::solve_level(ImpulseStep& step, int l) {
-  SolverBodies& sb = step.sb;
+  SolverBodyArray& sb = step.resting;
   StepStats& stats = step.stats();
   // Contacts that reach down to a frozen body see only the moving body's share of K. A frozen
   // body keeps its velocity through the level, so each contact's target is set once.

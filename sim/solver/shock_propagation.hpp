@@ -33,7 +33,7 @@ class ShockPropagation {
   // Whether body moves while `level` is solved (bodies of lower levels are frozen).
   bool moves(int body, int level) const { return body >= 0 && level_of(body) == level; }
   // The normal velocity a contact of `level` asks for against a frozen body (see the .cpp).
-  double frozen_target(const SolverBodies& sb, const SolverContact& c, int level) const;
+  double frozen_target(const SolverBodyArray& sb, const SolverContact& c, int level) const;
 
   int top_ = -1;  // the highest level that holds a body
   std::vector<int> level_;
