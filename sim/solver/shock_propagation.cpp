@@ -3,18 +3,40 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace boxpile {
 
 namespace {
 // A pass makes progress when its largest change falls below this fraction of the smallest change
-// of the level's earlier passes. A converging level gains a factor of 3 to 30 per pass (the
+// of the group's (or the level's) earlier passes. A converging level gains a factor of 3 to 30 per pass (the
 // Jenga tower, a stack of 10); a cycling one repeats the same change (a Jenga level stuck at
 // 4.765e-12 m/s for 55 passes; a falling pile's levels swinging between 2e-2 and 2e-1 m/s).
 constexpr double kShockProgress = 0.9;
-// A level stops after this many passes in a row without progress: a pass that overshoots
-// before converging does not end it.
+// A group (or a level) stops after this many passes in a row without progress: a pass that
+// overshoots before converging does not end it.
 constexpr int kShockStallPasses = 3;
+
+
+// One pass over a group's contacts; returns the largest velocity change |K dj| an impulse of it
+// made. Always inlined into the passes' loop: a group may be a single box's four points.
+[[gnu::always_inline]] inline double solve_group_pass(ImpulseStep& step, std::span<const ShockPropagation::LevelContact> group) {
+  SolverBodyArray& sb = step.resting;
+  SolverContact* const contacts = step.contacts.data();
+  const bool friction = step.friction();
+  ImpulseCounters& counters = step.counters();
+  // The largest velocity change an impulse of this pass made, |K dj|: once it is below
+  // kRestingConverged the group is solved and later passes would change nothing that matters.
+  double largest_change_sq = 0.0;
+  for (const ShockPropagation::LevelContact& lc : group) {
+    SolverContact& c = contacts[lc.index];
+    const Vec3 j = resting_impulse(c, sb.relative_velocity(c), lc.target, friction, counters);
+    sb.apply(c, j, lc.a_moves, lc.b_moves);
+    largest_change_sq = std::max(largest_change_sq, (c.K * j).squaredNorm());
+  }
+  return std::sqrt(largest_change_sq);
+}
+
 }  // namespace
 
 double approach_residual(const SolverBodies& sb, const std::vector<SolverContact>& contacts, double dt) {
@@ -34,6 +56,12 @@ void ShockPropagation::reserve(const StepStorage& storage) {
   adjacency_.reserve(2 * storage.contacts());
   by_level_.reserve(storage.contacts());
   level_contacts_.reserve(storage.contacts());
+  group_contacts_.reserve(storage.contacts());
+  root_.reserve(storage.bodies);
+  group_of_.reserve(storage.bodies);
+  group_start_.reserve(storage.bodies + 1);
+  group_fill_.reserve(storage.bodies);
+  active_.reserve(storage.bodies);
 }
 
 void ShockPropagation::run(ImpulseStep& step) {
@@ -43,6 +71,8 @@ void ShockPropagation::run(ImpulseStep& step) {
   // Solve level by level with e = 0; bodies below the level are frozen (infinite mass), so
   // nothing pushes back down the pile and the stack's weight is carried by the ground.
   step.resting.gather(step.sb.bodies);
+  root_.resize(step.sb.bodies.size());
+  group_of_.assign(step.sb.bodies.size(), -1);
   for (int l = 0; l <= top_; ++l) solve_level(step, l);
   step.resting.scatter(step.sb.bodies);
   step.stats().shock_levels = top_ + 1;
@@ -137,34 +167,100 @@ void ShockPropagation::solve_level(ImpulseStep& step, int l) {
     if (!(a_moves && b_moves)) set_collision_matrix(c, a_moves, b_moves);
     level_contacts_.push_back({by_level_[k], a_moves, b_moves, allow_gap(c, frozen_target(sb, c, l), step.dt())});
   }
+  group_level_contacts(step);
+  solve_groups(step);
+}
+
+void ShockPropagation::solve_groups(ImpulseStep& step) {
+  // Each pass runs over the groups still active. A group leaves once it has converged, or once
+  // its own passes have stalled (it would only repeat its cycle). The level ends when no group
+  // is left, or when its largest change stalls as a whole: a stalled group still counts there
+  // with its last change, so that a level stops when it did before it was split into groups,
+  // only without the work of the groups already done.
+  StepStats& stats = step.stats();
+  active_.clear();
+  for (int g = 0; g + 1 < static_cast<int>(group_start_.size()); ++g) active_.push_back({g, Progress{}});
   const int passes = step.settings().shock_passes;
-  // The smallest change a pass of this level has made so far, and the passes since it fell.
-  double lowest_change = std::numeric_limits<double>::infinity();
-  int passes_without_progress = 0;
-  for (int pass = 0; pass < passes; ++pass) {
-    // The largest velocity change an impulse of this pass made, |K dj|: once it is below
-    // kRestingConverged the level is solved and later passes would change nothing that matters.
-    double largest_change_sq = 0.0;
-    for (const LevelContact& lc : level_contacts_) {
-      SolverContact& c = step.contacts[lc.index];
-      const Vec3 j = resting_impulse(c, sb.relative_velocity(c), lc.target, step.friction(), step.counters());
-      sb.apply(c, j, lc.a_moves, lc.b_moves);
-      largest_change_sq = std::max(largest_change_sq, (c.K * j).squaredNorm());
+  Progress level;
+  bool stalled = false;
+  double stalled_change = 0.0;  // the largest last change of the groups that stalled
+  int pass = 0;
+  while (pass < passes && !active_.empty()) {
+    double largest_change = 0.0;
+    std::size_t kept = 0;
+    for (ActiveGroup& g : active_) {
+      const double change = solve_group_pass(step, group(g.group));
+      largest_change = std::max(largest_change, change);
+      if (change < kRestingConverged) continue;
+      if (!g.progress.made(change)) {
+        stalled = true;
+        stalled_change = std::max(stalled_change, change);
+        continue;
+      }
+      active_[kept++] = g;
     }
-    const double largest_change = std::sqrt(largest_change_sq);
-    ++stats.shock_passes_used;
+    active_.resize(kept);
     stats.shock_change[pass] = std::max(stats.shock_change[pass], largest_change);
-    stats.shock_pass_count = std::max(stats.shock_pass_count, pass + 1);
-    if (largest_change < kRestingConverged) break;
-    // A level that has stopped converging is cycling: more passes would repeat the same changes.
-    if (largest_change < kShockProgress * lowest_change) {
-      lowest_change = largest_change;
-      passes_without_progress = 0;
-    } else if (++passes_without_progress >= kShockStallPasses) {
-      ++stats.shock_stalled_levels;
+    ++pass;
+    if (active_.empty()) break;
+    if (!level.made(std::max(largest_change, stalled_change))) {
+      stalled = true;
       break;
     }
   }
+  stats.shock_pass_count = std::max(stats.shock_pass_count, pass);
+  stats.shock_passes_used += pass;
+  if (stalled) ++stats.shock_stalled_levels;
+}
+
+bool ShockPropagation::Progress::made(double change) {
+  // A pass makes progress when its change falls below kShockProgress of the smallest so far; after
+  // kShockStallPasses passes in a row without, the passes are cycling and more would repeat them.
+  if (change < kShockProgress * lowest_change) {
+    lowest_change = change;
+    passes_without_progress = 0;
+    return true;
+  }
+  return ++passes_without_progress < kShockStallPasses;
+}
+
+void ShockPropagation::group_level_contacts(const ImpulseStep& step) {
+  // The level's moving bodies joined by the contacts between two of them (union-find); each
+  // contact goes to the group of its moving body, in the order of the contact set.
+  auto mover = [](const LevelContact& lc, const SolverContact& c) { return lc.a_moves ? c.a : c.b; };
+  for (const LevelContact& lc : level_contacts_) {
+    const SolverContact& c = step.contacts[lc.index];
+    if (lc.a_moves) root_[c.a] = c.a;
+    if (lc.b_moves) root_[c.b] = c.b;
+  }
+  auto find = [&](int body) {
+    while (root_[body] != body) body = root_[body] = root_[root_[body]];
+    return body;
+  };
+  for (const LevelContact& lc : level_contacts_) {
+    if (!(lc.a_moves && lc.b_moves)) continue;
+    const SolverContact& c = step.contacts[lc.index];
+    const int ra = find(c.a), rb = find(c.b);
+    if (ra != rb) root_[std::max(ra, rb)] = std::min(ra, rb);
+  }
+  // Counting sort by group: each root numbered at its first contact.
+  group_start_.assign(1, 0);
+  for (const LevelContact& lc : level_contacts_) {
+    const int root = find(mover(lc, step.contacts[lc.index]));
+    if (group_of_[root] < 0) {
+      group_of_[root] = static_cast<int>(group_start_.size()) - 1;
+      group_start_.push_back(0);
+    }
+    ++group_start_[group_of_[root] + 1];
+  }
+  for (std::size_t g = 1; g < group_start_.size(); ++g) group_start_[g] += group_start_[g - 1];
+  group_contacts_.resize(level_contacts_.size());
+  group_fill_.assign(group_start_.begin(), group_start_.end() - 1);
+  for (const LevelContact& lc : level_contacts_) {
+    const int root = find(mover(lc, step.contacts[lc.index]));
+    group_contacts_[static_cast<std::size_t>(group_fill_[group_of_[root]]++)] = lc;
+  }
+  for (const LevelContact& lc : level_contacts_) group_of_[find(mover(lc, step.contacts[lc.index]))] = -1;
 }
 
 }  // namespace boxpile

@@ -1,6 +1,8 @@
 // Shock propagation of the Guendelman-Bridson-Fedkiw step (sec. 7 of the paper).
 #pragma once
 
+#include <limits>
+#include <span>
 #include <vector>
 
 #include "boxpile/sim/solver/impulse_step.hpp"
@@ -11,7 +13,8 @@ namespace boxpile {
 // Shock propagation: bodies sorted into levels by contact-graph distance from the ground and
 // fixed bodies; level by level from the bottom, up to `shock_passes` passes with e = 0 over the
 // contacts that reach down from the level (fewer once the level has converged), with every
-// lower level frozen (infinite mass).
+// lower level frozen (infinite mass). A level's contacts fall into groups that share no moving
+// body; each group leaves the passes once it has converged or stalled.
 class ShockPropagation {
  public:
   // Sizes the graph, the levels and the queue for `storage.bodies` bodies and their contacts.
@@ -20,6 +23,13 @@ class ShockPropagation {
   // Level of each body in the last run (-1: fixed; kUnsupported: not connected to the ground).
   const std::vector<int>& levels() const { return level_; }
   static constexpr int kUnsupported = 1 << 30;
+  // A contact of the level being solved, with what its passes read, set when the level begins.
+  struct LevelContact {
+    int index = 0;         // in step.contacts
+    bool a_moves = false;  // whether A (B) belongs to the level; the other is frozen or fixed
+    bool b_moves = false;
+    double target = 0.0;   // the u_n it asks for
+  };
 
  private:
   // The stages of a run: the contact graph between movable bodies, each body's level, the
@@ -28,6 +38,26 @@ class ShockPropagation {
   void assign_levels(const ImpulseStep& step);
   void group_contacts_by_level(const ImpulseStep& step);
   void solve_level(ImpulseStep& step, int level);
+  // The level's contacts sorted into groups that share no moving body, so that each group is
+  // solved, converges and stalls on its own (a pyramid's boxes of one level touch only the
+  // frozen level below: one group each).
+  void group_level_contacts(const ImpulseStep& step);
+  // The level's passes over its groups, each group until it converges or stalls.
+  void solve_groups(ImpulseStep& step);
+  // The contacts of group g of the level being solved.
+  std::span<const LevelContact> group(int g) const {
+    return {group_contacts_.data() + group_start_[g], group_contacts_.data() + group_start_[g + 1]};
+  }
+  // Whether the passes of a group (or a level) still converge.
+  struct Progress {
+    double lowest_change = std::numeric_limits<double>::infinity();  // the smallest so far
+    int passes_without_progress = 0;
+    bool made(double change);  // false once the passes have stalled
+  };
+  struct ActiveGroup {
+    int group = 0;
+    Progress progress;
+  };
 
   int level_of(int body) const { return body < 0 ? -1 : level_[body]; }
   // Whether body moves while `level` is solved (bodies of lower levels are frozen).
@@ -41,14 +71,12 @@ class ShockPropagation {
   std::vector<int> adjacency_start_, adjacency_;  // contact graph, compressed rows
   std::vector<int> by_level_;                      // contact indices sorted by level
   std::vector<int> level_start_;
-  // A contact of the level being solved, with what its passes read, set when the level begins.
-  struct LevelContact {
-    int index = 0;         // in step.contacts
-    bool a_moves = false;  // whether A (B) belongs to the level; the other is frozen or fixed
-    bool b_moves = false;
-    double target = 0.0;   // the u_n it asks for
-  };
   std::vector<LevelContact> level_contacts_;
+  std::vector<LevelContact> group_contacts_;  // level_contacts_ by group
+  std::vector<int> root_;                     // per body, union-find parent within the level
+  std::vector<int> group_of_;                 // per root body, its group (-1 between levels)
+  std::vector<int> group_start_, group_fill_;
+  std::vector<ActiveGroup> active_;  // the groups of the level still solved
 };
 
 }  // namespace boxpile
