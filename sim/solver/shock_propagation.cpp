@@ -178,9 +178,31 @@ void ShockPropagation::solve_groups(ImpulseStep& step) {
   // with its last change, so that a level stops when it did before it was split into groups,
   // only without the work of the groups already done.
   StepStats& stats = step.stats();
+  const int passes = step.settings().shock_passes;
+  if (group_start_.size() == 2) {
+    // One group (a stack's level, a Jenga layer): the same rules, in a loop of its own (the
+    // general loop's bookkeeping cost 8% of a stack_10 step).
+    const std::span<const LevelContact> only = group(0);
+    Progress progress;
+    int pass = 0;
+    bool stalled = false;
+    while (pass < passes) {
+      const double change = solve_group_pass(step, only);
+      stats.shock_change[pass] = std::max(stats.shock_change[pass], change);
+      ++pass;
+      if (change < kRestingConverged) break;
+      if (!progress.made(change)) {
+        stalled = true;
+        break;
+      }
+    }
+    stats.shock_pass_count = std::max(stats.shock_pass_count, pass);
+    stats.shock_passes_used += pass;
+    if (stalled) ++stats.shock_stalled_levels;
+    return;
+  }
   active_.clear();
   for (int g = 0; g + 1 < static_cast<int>(group_start_.size()); ++g) active_.push_back({g, Progress{}});
-  const int passes = step.settings().shock_passes;
   Progress level;
   bool stalled = false;
   double stalled_change = 0.0;  // the largest last change of the groups that stalled
