@@ -36,6 +36,8 @@ struct SolverContact {
   double slop = 0.0;         // m, penetration left alone by recovery (relative to the pair's boxes)
   double friction = 0.0;     // mu
   double restitution = 0.0;  // e
+  Mat3 Wa = Mat3::Zero();    // [rA]x^T, so omega_A x rA = Wa omega_A (likewise Wb): solver_body.hpp
+  Mat3 Wb = Mat3::Zero();
   Mat3 Ka = Mat3::Zero();    // 1/mA E - [rA]x IA^-1 [rA]x (zero for a fixed body)
   Mat3 Kb = Mat3::Zero();
   // The collision matrix the current phase uses and its inverse: Ka + Kb, or in shock

@@ -71,6 +71,8 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
     c.n = bc.contact.normal;
     c.ra = bc.contact.position - a.x;
     c.rb = bc.contact.position - b.x;
+    c.Wa = cross_matrix(c.ra).transpose();
+    c.Wb = cross_matrix(c.rb).transpose();
     c.depth = bc.contact.depth;
     c.slop = penetration_slop_for(ctx.scene.solver, std::min(smallest_edge(a), smallest_edge(b)));
     const Material m = combine_materials(a.material, b.material);
