@@ -57,7 +57,8 @@ struct StepStats {
   // levels (a level stops once it is below 1e-9 m/s), m/s; shock_pass_count passes are recorded.
   std::array<double, kMaxSolverPasses> shock_change{};
   int shock_pass_count = 0;  // the most passes any level used
-  int shock_stalled_levels = 0;  // levels stopped because their passes no longer converged
+  // Levels in which a group (or the level as a whole) stopped because its passes no longer converged.
+  int shock_stalled_levels = 0;
   double residual_after_shock = 0.0;
 };
 
