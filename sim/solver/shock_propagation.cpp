@@ -150,8 +150,8 @@ void ShockPropagation::group_contacts_by_level(const ImpulseStep& step) {
 // target for the relative u_n is min(0, -w) with w the frozen point's velocity along the
 // direction from it to the moving body.
 double ShockPropagation::frozen_target(const SolverBodyArray& sb, const SolverContact& c, int level) const {
-  if (moves(c.a, level) && !moves(c.b, level)) return std::min(0.0, -c.n.dot(sb.point_velocity(c.b, c.rb)));
-  if (moves(c.b, level) && !moves(c.a, level)) return std::min(0.0, c.n.dot(sb.point_velocity(c.a, c.ra)));
+  if (moves(c.a, level) && !moves(c.b, level)) return std::min(0.0, -c.n.dot(sb.point_velocity(c.b, c.Wb)));
+  if (moves(c.b, level) && !moves(c.a, level)) return std::min(0.0, c.n.dot(sb.point_velocity(c.a, c.Wa)));
   return 0.0;
 }
 

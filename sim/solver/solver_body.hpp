@@ -41,8 +41,8 @@ class SolverBodyArray {
     const SolverBody& b = at(c.b);
     return a.v + c.Wa * a.omega - b.v - c.Wb * b.omega;
   }
-  // Velocity of body's material point at offset r.
-  Vec3 point_velocity(int body, const Vec3& r) const { return at(body).v + at(body).omega.cross(r); }
+  // Velocity of body's material point at the offset whose W = [r]x^T is given.
+  Vec3 point_velocity(int body, const Mat3& W) const { return at(body).v + W * at(body).omega; }
   // Applies j to A and -j to B at the contact offsets, changing the velocities directly
   // (dv = j / m, d omega = I^-1 (r x j)). A fixed body or the ground has zero inverse mass and
   // inertia, so it does not move; a frozen body is left out by its flag.
