@@ -5,9 +5,11 @@
 // solver setting (`penetration_recovery`, 0 turns it off).
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "boxpile/sim/solver/impulse_step.hpp"
+#include "boxpile/sim/solver/shock_propagation.hpp"
 #include "boxpile/sim/step_storage.hpp"
 
 namespace boxpile {
@@ -16,18 +18,27 @@ class PenetrationRecovery {
  public:
   // Sizes the pseudo-velocities and the pseudo-impulses for `storage`.
   void reserve(const StepStorage& storage);
-  // Solves, in `recovery_passes` sequential passes over the contacts deeper than
-  // `penetration_slop`, for normal pseudo-impulses lambda >= 0 that give each point the
-  // separating pseudo-velocity beta (depth - slop) / dt, beta = `penetration_recovery`. Fills
-  // pseudo_v and pseudo_omega (per body).
-  void run(const ImpulseStep& step);
+  // Solves, in `recovery_passes` sequential passes, for normal pseudo-impulses lambda >= 0 that
+  // give each contact deeper than `penetration_slop` the separating pseudo-velocity
+  // beta (depth - slop) / dt (beta = `penetration_recovery`) and keep every contact from ending
+  // the step deeper than the slop, counting the velocities the step resolved. With `shock`'s
+  // levels (nullptr: shock propagation is off) the levels are solved from the ground up, each
+  // with the lower ones frozen. Fills pseudo_v and pseudo_omega (per body).
+  void run(const ImpulseStep& step, const ShockPropagation* shock);
 
   const std::vector<Vec3>& pseudo_v() const { return pseudo_v_; }
   const std::vector<Vec3>& pseudo_omega() const { return pseudo_omega_; }
 
  private:
+  // The separating pseudo-velocity contact `c` asks for, m/s (see the .cpp).
+  static double pseudo_target(const SolverBodies& sb, const SolverContact& c, double beta, double dt);
+  // The passes over one group of contacts; bodies below `level` are frozen (none without `shock`).
+  void solve_group(const ImpulseStep& step, std::span<const int> group, const ShockPropagation* shock, int level);
+
   std::vector<Vec3> pseudo_v_, pseudo_omega_;
   std::vector<double> lambda_;
+  std::vector<double> target_;  // per contact, the separating pseudo-velocity it asks for, m/s
+  std::vector<int> group_;      // the contacts of the bodies no level reaches
 };
 
 }  // namespace boxpile
