@@ -356,18 +356,26 @@ void collide_box_box(const OrientedBox& a, const OrientedBox& b, const Collision
       face_manifold(a, b, at, sat, settings, out);
       break;
     case FeatureKind::EdgeEdge: {
-      if (const SatResult face = separating_axis_test(a, b, at, settings.margin, /*faces_only=*/true);
-          std::abs(face.normal.dot(sat.normal)) > kEdgeNearFaceCos)
-        face_manifold(a, b, at, face, settings, out);
       // A's edge along Ai extreme toward B (along -n), B's edge along Bj extreme toward A (+n).
       const Edge ea = extreme_edge(a, sat.axis_a, -sat.normal);
       const Edge eb = extreme_edge(b, sat.axis_b, sat.normal);
       Vec3 pa, pb;
       closest_points(ea.mid, a.axes.col(sat.axis_a), a.half[sat.axis_a], eb.mid,
                      b.axes.col(sat.axis_b), b.half[sat.axis_b], pa, pb);
-      if (out.size() < kMaxManifoldPoints)
-        out.push_back({0.5 * (pa + pb), sat.normal, -sat.separation,
-                       FeatureId::make(FeatureKind::EdgeEdge, ea.id, eb.id, 0)});
+      out.push_back({0.5 * (pa + pb), sat.normal, -sat.separation,
+                     FeatureId::make(FeatureKind::EdgeEdge, ea.id, eb.id, 0)});
+      if (const SatResult face = separating_axis_test(a, b, at, settings.margin, /*faces_only=*/true);
+          std::abs(face.normal.dot(sat.normal)) > kEdgeNearFaceCos) {
+        Manifold face_points;
+        face_manifold(a, b, at, face, settings, face_points);
+        const double cos_nf = std::abs(face.normal.dot(sat.normal));
+        for (int i = 0; i < face_points.size() && out.size() < kMaxManifoldPoints; ++i) {
+          Contact c = face_points[i];
+          c.normal = sat.normal;  // one normal per manifold
+          c.depth *= cos_nf;
+          out.push_back(c);
+        }
+      }
       break;
     }
     case FeatureKind::Plane:
