@@ -13,6 +13,15 @@ foreach(lib IN LISTS boxpile_libraries)
   set_target_properties(${lib} PROPERTIES EXPORT_NAME ${short})
 endforeach()
 
+# Libraries built with the sanitizers (BOXPILE_SANITIZE, BOXPILE_FUZZ) need the sanitizers' runtimes
+# in every program that links them, a consumer of the installed package too: their link interface
+# says so.
+if(BOXPILE_SANITIZE OR BOXPILE_FUZZ)
+  foreach(lib IN LISTS boxpile_libraries)
+    target_link_options(${lib} INTERFACE -fsanitize=address,undefined)
+  endforeach()
+endif()
+
 # boxpile_warnings is linked privately; static libraries still name it in their link interface,
 # so it travels in the export set (it carries no flags outside the build tree).
 install(TARGETS ${boxpile_libraries} boxpile_warnings EXPORT boxpileTargets

@@ -9,7 +9,9 @@
 namespace boxpile {
 
 Material combine_materials(const Material& a, const Material& b) {
-  Material m{std::sqrt(a.friction * b.friction), std::max(a.restitution, b.restitution)};
+  Material m;
+  m.friction = std::sqrt(a.friction * b.friction);
+  m.restitution = std::max(a.restitution, b.restitution);
   if (a.static_friction || b.static_friction) m.static_friction = std::sqrt(a.static_mu() * b.static_mu());
   return m;
 }

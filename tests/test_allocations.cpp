@@ -1,10 +1,12 @@
 // No heap allocation inside a step: a counting global operator new, in a test binary of its own
 // (replacing operator new in the main test binary would count Catch2's own allocations too).
-// Every step's storage is sized when the world is built, so stepping allocates nothing.
+// Every step's storage is sized when the world is built, so stepping allocates nothing; the
+// penalty method sizes its anchors' storage in its first steps.
 #define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <new>
 #include <vector>
@@ -55,4 +57,16 @@ TEST_CASE("1,000 steps of pile_100 allocate nothing", "[allocations]") {
   world.contacts(contacts);
   INFO("contact points in the last step: " << contacts.size() << ", collision events " << world.events().size());
   CHECK(allocations == 0);
+}
+
+TEST_CASE("a penalty step allocates nothing once the first steps have sized the storage", "[allocations][penalty]") {
+  Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/pyramid.json");
+  scene.solver.method = ContactSolver::Penalty;
+  World world(scene);
+  // Half a second sizes the anchors' and springs' storage; the next half second reuses it.
+  const int half_second = static_cast<int>(std::lround(0.5 / scene.time.dt));
+  for (int k = 0; k < half_second; ++k) world.step();
+  const long before = g_allocations;
+  for (int k = 0; k < half_second; ++k) world.step();
+  CHECK(g_allocations - before == 0);
 }

@@ -256,9 +256,9 @@ TEST_CASE("make_bodies builds every body in order, materials falling back to the
     return d;
   };
   Scene scene;
-  scene.material = Material{0.8, 0.1};
+  scene.material = Material{0.8, 0.1, std::nullopt};
   scene.bodies = {cube("a", 0.5), cube("b", 1.5)};
-  scene.bodies[1].material = Material{0.2, 0.0};
+  scene.bodies[1].material = Material{0.2, 0.0, std::nullopt};
   scene.bodies[1].mass = 3.0;
 
   const std::vector<RigidBody> bodies = make_bodies(scene);

@@ -785,10 +785,10 @@ TEST_CASE("materials combine per pair: a box slides down an incline at g (sin - 
     Scene scene = empty_scene(Effects{true, true, false, false, false}, true);
     const Vec3 n(-std::sin(theta), 0, std::cos(theta));
     scene.ground = HalfSpace{n, 0.0};
-    scene.material = Material{0.9, 0.0};
+    scene.material = Material{0.9, 0.0, std::nullopt};
     BodyDesc box = unit_box("box", 0.5 * n);
     box.frame.orientation = Quat(Eigen::AngleAxisd(-theta, Vec3::UnitY()));
-    box.material = Material{0.1, 0.0};
+    box.material = Material{0.1, 0.0, std::nullopt};
     scene.bodies = {box};
     const auto engine = make_engine(name, scene);
     run(*engine, 240);

@@ -8,7 +8,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
+#include <iterator>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -204,4 +206,28 @@ TEST_CASE("an output file appears whole on commit and not at all without one", "
   CHECK(staging_files() == 0);
   // An unwritable place is found when the output is set up, before any run.
   CHECK_THROWS_AS(OutputFile("/proc/boxpile-test.json", {}), OutputError);
+}
+
+TEST_CASE("SIGINT inside an InterruptScope is polled, unwinds, and leaves no staging", "[reliability][output]") {
+  const fs::path dir = scratch("interrupt");
+  const auto entries = [&] {
+    return std::distance(fs::directory_iterator(dir), fs::directory_iterator{});
+  };
+  bool unwound = false;
+  try {
+    OutputFile out(dir / "run.json", {});
+    REQUIRE(entries() == 1);  // the staging file
+    const InterruptScope scope;
+    CHECK_FALSE(interrupted());
+    REQUIRE(std::raise(SIGINT) == 0);  // handled: only a flag is set, the process goes on
+    CHECK(interrupted());
+    throw_if_interrupted();
+  } catch (const Interrupted&) {
+    unwound = true;
+  }
+  CHECK(unwound);
+  CHECK(entries() == 0);  // the staging file went with the unwinding, nothing was written
+  // Past the scope the interrupt is spent: runs outside any scope (and a new scope) go on.
+  CHECK_FALSE(interrupted());
+  CHECK_NOTHROW(throw_if_interrupted());
 }

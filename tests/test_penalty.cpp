@@ -1,12 +1,10 @@
 // The penalty method against analytic predictions with stated tolerances: resting overlap,
 // the bounce of a damped spring, static and dynamic friction on an incline, energy in a resting
-// stack, the anchors' persistence, and an allocation-free step.
+// stack and the anchors' persistence (its allocation-free step: test_allocations.cpp).
 #include <catch2/catch.hpp>
 
-#include <atomic>
 #include <cmath>
 #include <cstdlib>
-#include <new>
 #include <string>
 
 #include "boxpile/sim/io/scene_loader.hpp"
@@ -14,20 +12,6 @@
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/sim/solver/penalty_parameters.hpp"
 #include "boxpile/sim/world.hpp"
-
-// Every heap allocation in this test program is counted, so that a test can check that a
-// stretch of steps allocates nothing.
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 using namespace boxpile;
 
@@ -236,14 +220,6 @@ TEST_CASE("the hard catalogue stands under the penalty method", "[penalty]") {
       CHECK(drift <= c.drift);
     }
   }
-}
-
-TEST_CASE("a penalty step allocates nothing once the first steps have sized the storage", "[penalty]") {
-  World w(penalty(fixture("pyramid")));
-  run(w, 0.5);
-  const long before = g_allocations.load();
-  run(w, 0.5);
-  CHECK(g_allocations.load() - before == 0);
 }
 
 TEST_CASE("the scene's method is the one that runs", "[penalty]") {

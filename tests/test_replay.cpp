@@ -221,7 +221,7 @@ TEST_CASE("a replay page's data holds every frame, body and contact of its recor
 
   // A run that blew up says where it stopped.
   Recording stopped = ode;
-  stopped.stopped = NonFiniteStop{25, 25 * scene.time.dt, "b3", "velocity"};
+  stopped.stopped = NonFiniteStop{25, 25 * scene.time.dt, "b3", "velocity", ""};
   const json with_stop = replay_data("stack_5", {&stopped}, {});
   CHECK(with_stop.at("engines")[0].at("stopped").at("body") == "b3");
   CHECK(with_stop.at("engines")[0].at("stopped").at("step") == 25);

@@ -2,10 +2,12 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/metrics.hpp"
+#include "boxpile/sim/solver/impulse.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/sim/world.hpp"
 
@@ -316,4 +318,35 @@ TEST_CASE("a collision event records the approach speed before any impulse", "[s
   const CollisionEvent& first = w.events().front();
   CHECK(first.body_b == kGround);
   CHECK(std::abs(first.approach_speed - std::sqrt(2 * 9.81 * 1.0)) < 2 * 9.81 * s.time.dt);
+}
+
+TEST_CASE("the friction-cone test decides as the rounded square root does even at the cone's edge", "[solver]") {
+  // Every squared norm within 40 ulps of limit^2 either side (where the squares and the root could
+  // disagree), over limits from 1e-160 to 1e200, and the edge cases: zero, subnormal, infinite, NaN.
+  const double eps = std::numeric_limits<double>::epsilon();
+  int checked = 0;
+  for (double limit : {0.0, 1e-160, 3.7e-149, 1e-12, 0.3, 1.0, 2.5, 7.1e3, 1e154, 1e200}) {
+    const double sq = limit * limit;
+    for (int k = -40; k <= 40; ++k) {
+      const double squared = sq * (1.0 + k * eps);
+      REQUIRE(norm_within(squared, limit) == (std::sqrt(squared) <= limit));
+      ++checked;
+    }
+    double up = sq, down = sq;
+    for (int k = 0; k < 40; ++k) {
+      up = std::nextafter(up, std::numeric_limits<double>::infinity());
+      down = std::nextafter(down, 0.0);
+      REQUIRE(norm_within(up, limit) == (std::sqrt(up) <= limit));
+      REQUIRE(norm_within(down, limit) == (std::sqrt(down) <= limit));
+      checked += 2;
+    }
+  }
+  CHECK(checked == 10 * 161);
+  CHECK(norm_within(4.0, 2.0));
+  CHECK_FALSE(norm_within(4.0 * (1.0 + 1e-6), 2.0));
+  CHECK(norm_within(1e-321, 1e-160));  // limit^2 underflows: the root decides
+  CHECK(norm_within(1e300, 1e200));    // limit^2 overflows
+  CHECK_FALSE(norm_within(std::numeric_limits<double>::infinity(), 1e200));
+  CHECK_FALSE(norm_within(std::numeric_limits<double>::quiet_NaN(), 1.0));
+  CHECK_FALSE(norm_within(1.0, std::numeric_limits<double>::quiet_NaN()));
 }

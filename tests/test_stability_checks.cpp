@@ -90,7 +90,8 @@ TEST_CASE("a body that passes a wall is caught, and a stopped run fails finitene
   RunMonitor m(s);
   m.observe(0, {state({-1, 0, 0.5})});
   m.observe(1, {state({0.3, 0, 0.5})});
-  const SceneCheckResult& wall = find(m.evaluate(), "stays_behind box");
+  const std::vector<SceneCheckResult> checks = m.evaluate();  // kept: `wall` refers into it
+  const SceneCheckResult& wall = find(checks, "stays_behind box");
   CHECK(wall.value == Approx(-0.31));
   CHECK_FALSE(wall.passed);
   m.stopped_non_finite();  // the run loop found a non-finite state (run_loop.hpp)

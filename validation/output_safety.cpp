@@ -2,6 +2,7 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <limits.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -90,6 +91,10 @@ extern "C" void on_stop_signal(int sig) {
   die_of(sig);
 }
 
+void install_stop_handlers() {
+  for (const int sig : {SIGINT, SIGTERM}) std::signal(sig, on_stop_signal);
+}
+
 void install_handlers_once() {
   static const bool installed = [] {
     for (std::size_t i = 0; i < std::size(kFatalSignals); ++i) {
@@ -98,7 +103,7 @@ void install_handlers_once() {
       sigemptyset(&action.sa_mask);
       sigaction(kFatalSignals[i], &action, &g_previous[i]);
     }
-    for (const int sig : {SIGINT, SIGTERM}) std::signal(sig, on_stop_signal);
+    install_stop_handlers();
     return true;
   }();
   static_cast<void>(installed);
@@ -181,20 +186,54 @@ StagedPath::~StagedPath() {
   if (slot_ >= 0) g_staged_used[static_cast<std::size_t>(slot_)].store(false);
 }
 
-OutputFile::OutputFile(fs::path target, const std::vector<fs::path>& inputs) : target_(std::move(target)) {
-  check_output_path(target_, OutputKind::File, inputs);
-  const fs::path parent = prepare_parent(target_);
+Staging create_staging(const fs::path& target, const fs::path& parent, OutputKind kind) {
+  install_handlers_once();
   // A hidden sibling, so that the final rename stays on one file system.
   // (Built by appending: GCC 12 warns falsely about "." + string, -Wrestrict.)
   std::string name(1, '.');
-  name += target_.filename().string();
+  name += target.filename().string();
   name += ".tmp-XXXXXX";
   std::string pattern = (parent / name).string();
-  const int fd = mkstemp(pattern.data());
-  if (fd < 0) refuse(target_, "cannot write in " + parent.string() + ": " + std::strerror(errno));
-  close(fd);
-  staging_ = pattern;
-  registration_ = std::make_unique<StagedPath>(staging_);
+  // Signals sent from outside are held until the staging is registered: one arriving between
+  // its creation and its registration would leave it behind. (SIGABRT is among them, as another
+  // process may send it; abort() itself unblocks it, and the faults are never blocked.)
+  sigset_t held_signals, previous;
+  sigemptyset(&held_signals);
+  sigaddset(&held_signals, SIGINT);
+  sigaddset(&held_signals, SIGTERM);
+  sigaddset(&held_signals, SIGABRT);
+  pthread_sigmask(SIG_BLOCK, &held_signals, &previous);
+  bool created = false;
+  if (kind == OutputKind::File) {
+    const int fd = mkstemp(pattern.data());
+    if (fd >= 0) close(fd);
+    created = fd >= 0;
+  } else {
+    created = mkdtemp(pattern.data()) != nullptr;
+  }
+  const int create_error = errno;
+  Staging staging;
+  if (created) {
+    staging.path = pattern;
+    try {
+      staging.registration = std::make_unique<StagedPath>(staging.path);
+    } catch (...) {
+      std::error_code ignored;
+      fs::remove(staging.path, ignored);
+      pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+      throw;
+    }
+  }
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  if (!created) refuse(target, "cannot write in " + parent.string() + ": " + std::strerror(create_error));
+  return staging;
+}
+
+OutputFile::OutputFile(fs::path target, const std::vector<fs::path>& inputs) : target_(std::move(target)) {
+  check_output_path(target_, OutputKind::File, inputs);
+  Staging staging = create_staging(target_, prepare_parent(target_), OutputKind::File);
+  staging_ = std::move(staging.path);
+  registration_ = std::move(staging.registration);
 }
 
 OutputFile::~OutputFile() {
@@ -228,10 +267,18 @@ void OutputFile::commit(std::string_view content) {
 
 InterruptScope::InterruptScope() {
   install_handlers_once();
-  if (g_scope_depth.fetch_add(1) == 0) g_interrupted = 0;
+  // The outermost scope installs the SIGINT/SIGTERM handlers again: something else (a test
+  // framework) may have replaced them since.
+  if (g_scope_depth.fetch_add(1) == 0) {
+    g_interrupted = 0;
+    install_stop_handlers();
+  }
 }
 
-InterruptScope::~InterruptScope() { g_scope_depth.fetch_sub(1); }
+InterruptScope::~InterruptScope() {
+  // Past the outermost scope a pending interrupt is spent: it was thrown, or nothing polled it.
+  if (g_scope_depth.fetch_sub(1) == 1) g_interrupted = 0;
+}
 
 bool interrupted() { return g_interrupted != 0; }
 

@@ -70,6 +70,16 @@ class StagedPath {
   int slot_ = -1;
 };
 
+// A staging file or directory beside a target: ".NAME.tmp-XXXXXX" in `parent`, registered for
+// removal. boxpile's signal handlers are installed before it exists, and SIGINT and SIGTERM are
+// held back from its creation until it is registered, so that no signal finds it unregistered.
+// OutputError ("cannot write in PARENT: ...") when it cannot be created.
+struct Staging {
+  std::filesystem::path path;
+  std::unique_ptr<StagedPath> registration;
+};
+Staging create_staging(const std::filesystem::path& target, const std::filesystem::path& parent, OutputKind kind);
+
 // A single output file: checked and staged (an empty hidden file beside the target) when
 // constructed, written and renamed over the target by commit(). Destroyed without a commit, it
 // removes the staging file and leaves any previous target untouched.

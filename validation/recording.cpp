@@ -240,7 +240,8 @@ Recording recording_from_json(const json& doc, const std::string& source) {
   for (std::size_t f = 0; f < n; ++f) reader.read(frames.element(f), r.frames);
   if (const auto stopped = root.find("stopped")) {
     r.stopped = NonFiniteStop{stopped->at("step").integer(), stopped->at("t").number(),
-                              stopped->at("body").string(), stopped->at("quantity").string()};
+                              stopped->at("body").string(), stopped->at("quantity").string(),
+                              /*description=*/""};
   }
   return r;
 }

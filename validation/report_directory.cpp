@@ -52,18 +52,13 @@ ReportDirectory::ReportDirectory(fs::path target, const std::vector<fs::path>& i
   } catch (const OutputError& e) {
     refuse(target, e.why());
   }
-  // A hidden sibling, so that the final rename stays on one file system.
-  std::string name(1, '.');
-  name += target_.filename().string();
-  name += ".tmp-XXXXXX";
-  const std::string pattern = (parent / name).string();
-  std::vector<char> buf(pattern.begin(), pattern.end());
-  buf.push_back('\0');
-  if (!mkdtemp(buf.data())) {
-    refuse(target_, std::string("cannot write in ") + parent.string() + ": " + std::strerror(errno));
+  try {
+    Staging staging = create_staging(target_, parent, OutputKind::Directory);
+    staging_ = std::move(staging.path);
+    registration_ = std::move(staging.registration);
+  } catch (const OutputError& e) {
+    refuse(target_, e.why());
   }
-  staging_ = fs::path(buf.data());
-  registration_ = std::make_unique<StagedPath>(staging_);
   // mkdtemp makes it private (0700); the report gets the permissions of any new directory.
   const mode_t mask = umask(0);
   umask(mask);

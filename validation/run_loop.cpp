@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "boxpile/sim/finite.hpp"
+#include "boxpile/validation/output_safety.hpp"
 
 namespace boxpile {
 
@@ -40,6 +41,7 @@ RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const 
       break;
     }
     result.steps = k;
+    throw_if_interrupted();  // a SIGINT or SIGTERM inside an InterruptScope stops the run here
     call(hooks.step, k);
     if (k % every == 0 || k == steps) {
       call(hooks.frame, k);

@@ -51,7 +51,8 @@ long steps_per_frame(double dt, double frame_rate);
 
 // Steps `engine` `steps` times (dt is the engine's). A step that leaves any state non-finite
 // (sim/finite.hpp) ends the run: no hook sees that step, the last finite states are recorded as a frame (when not
-// already), and the result says where it happened.
+// already), and the result says where it happened. SIGINT or SIGTERM inside an InterruptScope
+// (output_safety.hpp) ends it after the step in progress: Interrupted is thrown.
 RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const RunHooks& hooks);
 
 }  // namespace boxpile

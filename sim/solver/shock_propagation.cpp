@@ -33,7 +33,7 @@ void ShockPropagation::reserve(const StepStorage& storage) {
   level_start_.reserve(storage.bodies + 2);
   adjacency_.reserve(2 * storage.contacts());
   by_level_.reserve(storage.contacts());
-  level_target_.reserve(storage.contacts());
+  level_contacts_.reserve(storage.contacts());
 }
 
 void ShockPropagation::run(ImpulseStep& step) {
@@ -133,11 +133,12 @@ void ShockPropagation::solve_level(ImpulseStep& step, int l) {
   StepStats& stats = step.stats();
   // Contacts that reach down to a frozen body see only the moving body's share of K. A frozen
   // body keeps its velocity through the level, so each contact's target is set once.
-  level_target_.resize(level_start_[l + 1] - level_start_[l]);
+  level_contacts_.clear();
   for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
     SolverContact& c = step.contacts[by_level_[k]];
-    if (!(moves(c.a, l) && moves(c.b, l))) set_collision_matrix(c, moves(c.a, l), moves(c.b, l));
-    level_target_[k - level_start_[l]] = allow_gap(c, frozen_target(sb, c, l), step.dt());
+    const bool a_moves = moves(c.a, l), b_moves = moves(c.b, l);
+    if (!(a_moves && b_moves)) set_collision_matrix(c, a_moves, b_moves);
+    level_contacts_.push_back({by_level_[k], a_moves, b_moves, allow_gap(c, frozen_target(sb, c, l), step.dt())});
   }
   const int passes = step.settings().shock_passes;
   // The smallest change a pass of this level has made so far, and the passes since it fell.
@@ -147,11 +148,10 @@ void ShockPropagation::solve_level(ImpulseStep& step, int l) {
     // The largest velocity change an impulse of this pass made, |K dj|: once it is below
     // kRestingConverged the level is solved and later passes would change nothing that matters.
     double largest_change_sq = 0.0;
-    for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
-      SolverContact& c = step.contacts[by_level_[k]];
-      const Vec3 j = resting_impulse(c, sb.relative_velocity(c), level_target_[k - level_start_[l]], step.friction(),
-                                     step.counters());
-      sb.apply(c, j, moves(c.a, l), moves(c.b, l));
+    for (const LevelContact& lc : level_contacts_) {
+      SolverContact& c = step.contacts[lc.index];
+      const Vec3 j = resting_impulse(c, sb.relative_velocity(c), lc.target, step.friction(), step.counters());
+      sb.apply(c, j, lc.a_moves, lc.b_moves);
       largest_change_sq = std::max(largest_change_sq, (c.K * j).squaredNorm());
     }
     const double largest_change = std::sqrt(largest_change_sq);

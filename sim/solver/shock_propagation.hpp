@@ -50,7 +50,14 @@ class ShockPropagation {
   std::vector<int> adjacency_start_, adjacency_;  // contact graph, compressed rows
   std::vector<int> by_level_;                      // contact indices sorted by level
   std::vector<int> level_start_;
-  std::vector<double> level_target_;  // per contact of the level being solved: the u_n it asks for
+  // A contact of the level being solved, with what its passes read, set when the level begins.
+  struct LevelContact {
+    int index = 0;         // in step.contacts
+    bool a_moves = false;  // whether A (B) belongs to the level; the other is frozen or fixed
+    bool b_moves = false;
+    double target = 0.0;   // the u_n it asks for
+  };
+  std::vector<LevelContact> level_contacts_;
 };
 
 }  // namespace boxpile

@@ -51,7 +51,6 @@ int run_compare_command(const CompareOptions& options) {
 
   ProgressPrinter progress;
   settings.progress = [&progress](const CompareProgress& p) {
-    throw_if_interrupted();
     progress({p.engine, p.baseline ? "(perturbed start)" : "", p.index, p.total, p.fraction});
   };
   std::cerr << "boxpile compare: " << scene.name << " (" << scene.source << "), " << step_count(scene.time)
