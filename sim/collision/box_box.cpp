@@ -34,12 +34,6 @@ constexpr double kParallelEdgeSin = 1e-6;
 constexpr double kFaceBiasRelative = 0.05;
 constexpr double kFaceBiasAbsolute = 1e-6;  // times the largest half extent of the two boxes
 
-// An edge-edge axis within this angle's cosine of the best face normal means two nearly aligned
-// boxes (a brick 0.02 rad off the one under it): their edge-edge point alone lets them turn
-// about it, and the corners it does not hold sank 2.2 mm (1% of the brick) within one step. The
-// face's clipped points join the edge point then.
-constexpr double kEdgeNearFaceCos = 0.995;  // 0.1 rad
-
 inline double sign_of(double x) { return x < 0.0 ? -1.0 : 1.0; }
 
 // Whether num / sqrt(len2) > bar (len2 > 0), without the root and without a branch.
@@ -341,6 +335,26 @@ void face_manifold(const OrientedBox& a, const OrientedBox& b, const AxisTests& 
   else
     face_contacts(b, a, at.C.col(sat.axis_b), sat.axis_b, sat.normal, /*ref_is_a=*/false, settings, out);
 }
+
+// Beside the edge-edge point (out[0]) of two nearly aligned boxes, the clipped points of the best
+// face (kEdgeNearFaceCos), in the edge point's normal: each point's depth is its gap along that
+// normal (the face depth times the cosine between the normals), never more than the edge point's,
+// the pair's penetration along it.
+void add_near_face_points(const OrientedBox& a, const OrientedBox& b, const AxisTests& at, const SatResult& sat,
+                          const CollisionSettings& settings, Manifold& out) {
+  const SatResult face = separating_axis_test(a, b, at, settings.margin, /*faces_only=*/true);
+  const double cos_nf = std::abs(face.normal.dot(sat.normal));
+  if (cos_nf <= kEdgeNearFaceCos) return;
+  Manifold face_points;
+  face_manifold(a, b, at, face, settings, face_points);
+  const double edge_depth = out[0].depth;
+  for (int i = 0; i < face_points.size() && out.size() < kMaxManifoldPoints; ++i) {
+    Contact c = face_points[i];
+    c.normal = sat.normal;  // one normal per manifold
+    c.depth = std::min(c.depth * cos_nf, edge_depth);
+    out.push_back(c);
+  }
+}
 }  // namespace
 
 void collide_box_box(const OrientedBox& a, const OrientedBox& b, const CollisionSettings& settings,
@@ -364,18 +378,7 @@ void collide_box_box(const OrientedBox& a, const OrientedBox& b, const Collision
                      b.axes.col(sat.axis_b), b.half[sat.axis_b], pa, pb);
       out.push_back({0.5 * (pa + pb), sat.normal, -sat.separation,
                      FeatureId::make(FeatureKind::EdgeEdge, ea.id, eb.id, 0)});
-      if (const SatResult face = separating_axis_test(a, b, at, settings.margin, /*faces_only=*/true);
-          std::abs(face.normal.dot(sat.normal)) > kEdgeNearFaceCos) {
-        Manifold face_points;
-        face_manifold(a, b, at, face, settings, face_points);
-        const double cos_nf = std::abs(face.normal.dot(sat.normal));
-        for (int i = 0; i < face_points.size() && out.size() < kMaxManifoldPoints; ++i) {
-          Contact c = face_points[i];
-          c.normal = sat.normal;  // one normal per manifold
-          c.depth *= cos_nf;
-          out.push_back(c);
-        }
-      }
+      add_near_face_points(a, b, at, sat, settings, out);
       break;
     }
     case FeatureKind::Plane:
