@@ -336,10 +336,16 @@ void face_manifold(const OrientedBox& a, const OrientedBox& b, const AxisTests& 
     face_contacts(b, a, at.C.col(sat.axis_b), sat.axis_b, sat.normal, /*ref_is_a=*/false, settings, out);
 }
 
+// A clipped face point this close to the edge-edge point, as a fraction of the smallest edge of
+// the two boxes, is the same corner: the clipped polygon has a vertex where the incident edge
+// crosses the reference face's side, which is the edge-edge crossing itself. A second point there
+// holds nothing more and slows the resting passes (pile_100's steps cost 13% more with it).
+constexpr double kSameCornerPerEdge = 0.01;
+
 // Beside the edge-edge point (out[0]) of two nearly aligned boxes, the clipped points of the best
-// face (kEdgeNearFaceCos), in the edge point's normal: each point's depth is its gap along that
-// normal (the face depth times the cosine between the normals), never more than the edge point's,
-// the pair's penetration along it.
+// face (kEdgeNearFaceCos) but the one at the edge point's corner, in the edge point's normal: each
+// point's depth is its gap along that normal (the face depth times the cosine between the
+// normals), never more than the edge point's, the pair's penetration along it.
 void add_near_face_points(const OrientedBox& a, const OrientedBox& b, const AxisTests& at, const SatResult& sat,
                           const CollisionSettings& settings, Manifold& out) {
   const SatResult face = separating_axis_test(a, b, at, settings.margin, /*faces_only=*/true);
@@ -347,11 +353,13 @@ void add_near_face_points(const OrientedBox& a, const OrientedBox& b, const Axis
   if (cos_nf <= kEdgeNearFaceCos) return;
   Manifold face_points;
   face_manifold(a, b, at, face, settings, face_points);
-  const double edge_depth = out[0].depth;
+  const Contact edge = out[0];
+  const double same_corner = kSameCornerPerEdge * 2.0 * std::min(a.half.minCoeff(), b.half.minCoeff());
   for (int i = 0; i < face_points.size() && out.size() < kMaxManifoldPoints; ++i) {
     Contact c = face_points[i];
+    if ((c.position - edge.position).squaredNorm() < same_corner * same_corner) continue;
     c.normal = sat.normal;  // one normal per manifold
-    c.depth = std::min(c.depth * cos_nf, edge_depth);
+    c.depth = std::min(c.depth * cos_nf, edge.depth);
     out.push_back(c);
   }
 }
