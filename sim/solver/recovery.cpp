@@ -20,7 +20,8 @@ constexpr double kRecoveryConverged = 0.05;
 // would push its bodies into each other, and covers an approach the velocity stages left (a body
 // frozen by shock propagation that drives into the level above it, an impact the collision loop
 // had no passes left for). Pseudo-velocities move positions only, so covering an approach adds
-// no kinetic energy: the momenta keep it, and the next step's loops resolve it.
+// no kinetic energy: the momenta keep it, and the next step's loops resolve it (when they are cut
+// short, that energy stays instead of being paid for by the bodies sinking: docs/solver.md).
 double PenetrationRecovery::pseudo_target(const SolverBodies& sb, const SolverContact& c, double beta, double dt) {
   const double un = c.n.dot(sb.relative_velocity(c));
   if (c.depth > c.slop) return beta * (c.depth - c.slop) / dt + std::max(0.0, -un);
@@ -61,8 +62,8 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
   // ground, and a lower body the velocity stages left driving into the one above it moves that
   // one out of its way. Then every contact with both bodies movable: in a tumbling pile a
   // body's level (its distance from the ground in the contact graph) need not follow its
-  // height, and a body wedged between two frozen ones gets out only if they move too (with the
-  // levels alone, a pair of `pile_100` sank 5 cm over 80 steps that way).
+  // height, and a frozen lower level may hold what the level above it must push (with the levels
+  // alone, a pair of `pile_100` sank 5 cm over 80 steps).
   if (shock)
     for (int l = 0; l <= shock->top_level(); ++l) solve_phase(step, shock->contacts_of_level(l), shock, l);
   solve_phase(step, all_, nullptr, 0);
