@@ -9,11 +9,11 @@ namespace boxpile {
 
 namespace {
 // A pass makes progress when its largest change falls below this fraction of the smallest change
-// of the group's (or the level's) earlier passes. A converging level gains a factor of 3 to 30 per pass (the
+// of the level's earlier passes. A converging level gains a factor of 3 to 30 per pass (the
 // Jenga tower, a stack of 10); a cycling one repeats the same change (a Jenga level stuck at
 // 4.765e-12 m/s for 55 passes; a falling pile's levels swinging between 2e-2 and 2e-1 m/s).
 constexpr double kShockProgress = 0.9;
-// A group (or a level) stops after this many passes in a row without progress: a pass that
+// A level stops after this many passes in a row without progress: a pass that
 // overshoots before converging does not end it.
 constexpr int kShockStallPasses = 3;
 
@@ -131,7 +131,6 @@ void ShockPropagation::assign_levels(const ImpulseStep& step) {
 
 void ShockPropagation::group_contacts_by_level(const ImpulseStep& step) {
   // A contact belongs to the higher of its two bodies' levels.
-  auto contact_level = [&](const SolverContact& c) { return std::max(level_of(c.a), level_of(c.b)); };
   auto solved = [](int l) { return l >= 0 && l != kUnsupported; };
   level_start_.assign((top_ + 2), 0);
   for (const SolverContact& c : step.contacts)
@@ -172,60 +171,40 @@ void ShockPropagation::solve_level(ImpulseStep& step, int l) {
 }
 
 void ShockPropagation::solve_groups(ImpulseStep& step) {
-  // Each pass runs over the groups still active. A group leaves once it has converged, or once
-  // its own passes have stalled (it would only repeat its cycle). The level ends when no group
-  // is left, or when its largest change stalls as a whole: a stalled group still counts there
-  // with its last change, so that a level stops when it did before it was split into groups,
-  // only without the work of the groups already done.
+  // Each pass runs over the groups that have not converged yet: a group leaves once no impulse of
+  // a pass changes a point's velocity by more than kRestingConverged (its later passes would
+  // change nothing that matters). The level ends as a whole level did before it was split: when
+  // every group has converged, or when the largest change of a pass stalls. (Letting a stalled
+  // group leave on its own took some 10% more off pyramid_10, but let a tumbling pile's slowly
+  // converging groups run on, and the brick wall's penetration went from 0.57 to 4.6 mm.)
   StepStats& stats = step.stats();
   const int passes = step.settings().shock_passes;
-  if (group_start_.size() == 2) {
-    // One group (a stack's level, a Jenga layer): the same rules, in a loop of its own (the
-    // general loop's bookkeeping cost 8% of a stack_10 step).
-    const std::span<const LevelContact> only = group(0);
-    Progress progress;
-    int pass = 0;
-    bool stalled = false;
-    while (pass < passes) {
-      const double change = solve_group_pass(step, only);
-      stats.shock_change[pass] = std::max(stats.shock_change[pass], change);
-      ++pass;
-      if (change < kRestingConverged) break;
-      if (!progress.made(change)) {
-        stalled = true;
-        break;
-      }
-    }
-    stats.shock_pass_count = std::max(stats.shock_pass_count, pass);
-    stats.shock_passes_used += pass;
-    if (stalled) ++stats.shock_stalled_levels;
-    return;
-  }
+  const int groups = static_cast<int>(group_start_.size()) - 1;
   active_.clear();
-  for (int g = 0; g + 1 < static_cast<int>(group_start_.size()); ++g) active_.push_back({g, Progress{}});
+  for (int g = 0; g < groups; ++g) active_.push_back(g);
   Progress level;
   bool stalled = false;
-  double stalled_change = 0.0;  // the largest last change of the groups that stalled
   int pass = 0;
   while (pass < passes && !active_.empty()) {
     double largest_change = 0.0;
-    std::size_t kept = 0;
-    for (ActiveGroup& g : active_) {
-      const double change = solve_group_pass(step, group(g.group));
-      largest_change = std::max(largest_change, change);
-      if (change < kRestingConverged) continue;
-      if (!g.progress.made(change)) {
-        stalled = true;
-        stalled_change = std::max(stalled_change, change);
-        continue;
+    if (groups == 1) {
+      // One group (a stack's level, a Jenga layer): without the bookkeeping, which cost 8% of a
+      // stack_10 step.
+      largest_change = solve_group_pass(step, group(0));
+      if (largest_change < kRestingConverged) active_.clear();
+    } else {
+      std::size_t kept = 0;
+      for (const int g : active_) {
+        const double change = solve_group_pass(step, group(g));
+        largest_change = std::max(largest_change, change);
+        if (change >= kRestingConverged) active_[kept++] = g;
       }
-      active_[kept++] = g;
+      active_.resize(kept);
     }
-    active_.resize(kept);
     stats.shock_change[pass] = std::max(stats.shock_change[pass], largest_change);
     ++pass;
     if (active_.empty()) break;
-    if (!level.made(std::max(largest_change, stalled_change))) {
+    if (!level.made(largest_change)) {
       stalled = true;
       break;
     }

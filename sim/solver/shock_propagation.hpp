@@ -1,6 +1,7 @@
 // Shock propagation of the Guendelman-Bridson-Fedkiw step (sec. 7 of the paper).
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <span>
 #include <vector>
@@ -14,7 +15,7 @@ namespace boxpile {
 // fixed bodies; level by level from the bottom, up to `shock_passes` passes with e = 0 over the
 // contacts that reach down from the level (fewer once the level has converged), with every
 // lower level frozen (infinite mass). A level's contacts fall into groups that share no moving
-// body; each group leaves the passes once it has converged or stalled.
+// body; each group leaves the passes once it has converged.
 class ShockPropagation {
  public:
   // Sizes the graph, the levels and the queue for `storage.bodies` bodies and their contacts.
@@ -23,6 +24,13 @@ class ShockPropagation {
   // Level of each body in the last run (-1: fixed; kUnsupported: not connected to the ground).
   const std::vector<int>& levels() const { return level_; }
   static constexpr int kUnsupported = 1 << 30;
+  // The highest level of the last run (-1 when no body is supported), the contacts of level l
+  // (those whose higher body is on level l), and a contact's level.
+  int top_level() const { return top_; }
+  std::span<const int> contacts_of_level(int l) const {
+    return {by_level_.data() + level_start_[l], by_level_.data() + level_start_[l + 1]};
+  }
+  int contact_level(const SolverContact& c) const { return std::max(level_of(c.a), level_of(c.b)); }
   // A contact of the level being solved, with what its passes read, set when the level begins.
   struct LevelContact {
     int index = 0;         // in step.contacts
@@ -38,25 +46,21 @@ class ShockPropagation {
   void assign_levels(const ImpulseStep& step);
   void group_contacts_by_level(const ImpulseStep& step);
   void solve_level(ImpulseStep& step, int level);
-  // The level's contacts sorted into groups that share no moving body, so that each group is
-  // solved, converges and stalls on its own (a pyramid's boxes of one level touch only the
+  // The level's contacts sorted into groups that share no moving body, so that each group leaves
+  // the passes once it has converged (a pyramid's boxes of one level touch only the
   // frozen level below: one group each).
   void group_level_contacts(const ImpulseStep& step);
-  // The level's passes over its groups, each group until it converges or stalls.
+  // The level's passes over its groups, each group until it converges, the level until it stalls.
   void solve_groups(ImpulseStep& step);
   // The contacts of group g of the level being solved.
   std::span<const LevelContact> group(int g) const {
     return {group_contacts_.data() + group_start_[g], group_contacts_.data() + group_start_[g + 1]};
   }
-  // Whether the passes of a group (or a level) still converge.
+  // Whether the passes of a level still converge.
   struct Progress {
     double lowest_change = std::numeric_limits<double>::infinity();  // the smallest so far
     int passes_without_progress = 0;
     bool made(double change);  // false once the passes have stalled
-  };
-  struct ActiveGroup {
-    int group = 0;
-    Progress progress;
   };
 
   int level_of(int body) const { return body < 0 ? -1 : level_[body]; }
@@ -76,7 +80,7 @@ class ShockPropagation {
   std::vector<int> root_;                     // per body, union-find parent within the level
   std::vector<int> group_of_;                 // per root body, its group (-1 between levels)
   std::vector<int> group_start_, group_fill_;
-  std::vector<ActiveGroup> active_;  // the groups of the level still solved
+  std::vector<int> active_;  // the groups of the level not converged yet
 };
 
 }  // namespace boxpile
