@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <csignal>
@@ -24,6 +25,7 @@
 #include "boxpile/validation/compare.hpp"
 #include "boxpile/validation/engine_factory.hpp"
 #include "boxpile/validation/output_safety.hpp"
+#include "boxpile/validation/report_directory.hpp"
 
 using namespace boxpile;
 using Catch::Matchers::Contains;
@@ -208,6 +210,31 @@ TEST_CASE("an output file appears whole on commit and not at all without one", "
   CHECK(staging_files() == 0);
   // An unwritable place is found when the output is set up, before any run.
   CHECK_THROWS_AS(OutputFile("/proc/boxpile-test.json", {}), OutputError);
+}
+
+TEST_CASE("SIGTERM outside an InterruptScope removes a staged report directory and all it holds",
+          "[reliability][output]") {
+  // In a child process, which dies of the signal. Enough files that the handler reads the
+  // directory in several batches, and a folder two levels down.
+  const fs::path dir = scratch("terminated");
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    ReportDirectory report(dir / "report");
+    fs::create_directories(report.staging() / "cells" / "plots");
+    for (int k = 0; k < 200; ++k) std::ofstream(report.staging() / "cells" / ("cell_" + std::to_string(k) + ".json")) << "{}";
+    std::ofstream(report.staging() / "cells" / "plots" / "energy.svg") << "<svg/>";
+    { const InterruptScope scope; }  // puts boxpile's SIGTERM handler back (Catch2 replaces it per test)
+    std::raise(SIGTERM);
+    std::_Exit(0);  // not reached: the handler ends the process with the signal
+  }
+  int status = 0;
+  REQUIRE(waitpid(child, &status, 0) == child);
+  // The shell's code for it either way: killed by SIGTERM, or (the handler's _Exit, when the
+  // signal stays blocked inside its own handler) exit status 128 + SIGTERM.
+  const int code = WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status);
+  CHECK(code == 128 + SIGTERM);
+  CHECK(fs::is_empty(dir));
 }
 
 TEST_CASE("SIGINT inside an InterruptScope is polled, unwinds, and leaves no staging", "[reliability][output]") {

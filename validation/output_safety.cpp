@@ -34,21 +34,28 @@ std::array<std::atomic<bool>, kMaxStaged> g_staged_used{};
 std::atomic<int> g_scope_depth{0};
 volatile std::sig_atomic_t g_interrupted = 0;
 
-// Removes a file, or a directory and everything in it, with plain system calls. Used on the way
-// out of a dying process, where the C++ library cannot be trusted.
-void remove_tree(int parent_fd, const char* name) {
-  if (unlinkat(parent_fd, name, 0) == 0 || errno != EISDIR) return;
-  const int fd = openat(parent_fd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW);
+// How deep remove_tree() goes: a staging directory holds a report's files and a folder or two.
+constexpr int kMaxRemoveDepth = 16;
+// remove_tree()'s directory buffer, per level (on the stack: the handler must not allocate).
+constexpr std::size_t kDirentBuffer = 1024;
+
+// Removes a file, or a directory and everything in it, with system calls only (openat,
+// getdents64, unlinkat, close). Used on the way out of a dying process from a signal handler,
+// which may have interrupted malloc: opendir() and readdir() allocate, and would deadlock there.
+void remove_tree(int parent_fd, const char* name, int depth = 0) {
+  if (unlinkat(parent_fd, name, 0) == 0 || errno != EISDIR || depth > kMaxRemoveDepth) return;
+  const int fd = openat(parent_fd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
   if (fd < 0) return;
-  if (DIR* dir = fdopendir(fd)) {
-    while (const dirent* e = readdir(dir)) {
+  alignas(dirent64) char buffer[kDirentBuffer];
+  for (ssize_t n; (n = getdents64(fd, buffer, sizeof buffer)) > 0;) {
+    for (ssize_t at = 0; at < n;) {
+      const auto* e = reinterpret_cast<const dirent64*>(buffer + at);
+      at += e->d_reclen;
       if (std::strcmp(e->d_name, ".") == 0 || std::strcmp(e->d_name, "..") == 0) continue;
-      remove_tree(fd, e->d_name);
+      remove_tree(fd, e->d_name, depth + 1);
     }
-    closedir(dir);
-  } else {
-    close(fd);
   }
+  close(fd);
   unlinkat(parent_fd, name, AT_REMOVEDIR);
 }
 
