@@ -193,6 +193,15 @@ StagedPath::~StagedPath() {
   if (slot_ >= 0) g_staged_used[static_cast<std::size_t>(slot_)].store(false);
 }
 
+HeldSignals::HeldSignals() {
+  sigset_t held;
+  sigemptyset(&held);
+  for (const int sig : {SIGINT, SIGTERM, SIGABRT}) sigaddset(&held, sig);
+  pthread_sigmask(SIG_BLOCK, &held, &previous_);
+}
+
+HeldSignals::~HeldSignals() { pthread_sigmask(SIG_SETMASK, &previous_, nullptr); }
+
 Staging create_staging(const fs::path& target, const fs::path& parent, OutputKind kind) {
   install_handlers_once();
   // A hidden sibling, so that the final rename stays on one file system.
@@ -201,15 +210,8 @@ Staging create_staging(const fs::path& target, const fs::path& parent, OutputKin
   name += target.filename().string();
   name += ".tmp-XXXXXX";
   std::string pattern = (parent / name).string();
-  // Signals sent from outside are held until the staging is registered: one arriving between
-  // its creation and its registration would leave it behind. (SIGABRT is among them, as another
-  // process may send it; abort() itself unblocks it, and the faults are never blocked.)
-  sigset_t held_signals, previous;
-  sigemptyset(&held_signals);
-  sigaddset(&held_signals, SIGINT);
-  sigaddset(&held_signals, SIGTERM);
-  sigaddset(&held_signals, SIGABRT);
-  pthread_sigmask(SIG_BLOCK, &held_signals, &previous);
+  // A signal arriving between the staging's creation and its registration would leave it behind.
+  const HeldSignals held;
   bool created = false;
   if (kind == OutputKind::File) {
     const int fd = mkstemp(pattern.data());
@@ -227,11 +229,9 @@ Staging create_staging(const fs::path& target, const fs::path& parent, OutputKin
     } catch (...) {
       std::error_code ignored;
       fs::remove(staging.path, ignored);
-      pthread_sigmask(SIG_SETMASK, &previous, nullptr);
       throw;
     }
   }
-  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
   if (!created) refuse(target, "cannot write in " + parent.string() + ": " + std::strerror(create_error));
   return staging;
 }
