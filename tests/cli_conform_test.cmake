@@ -50,7 +50,7 @@ run_boxpile(0 conform --collider "${own_collider}" --samples 300 --report "${WOR
 file(READ "${WORK}/own/conform.json" report)
 expect_json("${report}" ON within_gates)
 expect_length("${report}" 0 failures)
-expect_json("${report}" 322 queries)  # 22 fixtures and 300 pairs
+expect_json("${report}" 323 queries)  # 23 fixtures and 300 pairs
 expect_contains("${out}" "within the gates")
 file(READ "${WORK}/own/conform.md" md)
 expect_contains("${md}" "every answer was right")

@@ -58,6 +58,18 @@ constexpr double kBulletEdgeFudge = 1e-5;
 
 bool is_face(FeatureKind k) { return k == FeatureKind::FaceA || k == FeatureKind::FaceB; }
 
+// Our one deliberate difference from ODE's and Bullet's box-box sets: an edge-edge point followed
+// by the clipped points of a face within kEdgeNearFaceCos of its normal (box_box.hpp).
+bool is_near_face(const Manifold& own, const SatResult& sat) {
+  return sat.kind == FeatureKind::EdgeEdge && own.size() > 1;
+}
+
+// Whether a face normal of A or B lies within kEdgeNearFaceCos of n.
+bool near_a_face_normal(const BoxPair& p, const Vec3& n) {
+  return (p.a.axes.transpose() * n).cwiseAbs().maxCoeff() > kEdgeNearFaceCos ||
+         (p.b.axes.transpose() * n).cwiseAbs().maxCoeff() > kEdgeNearFaceCos;
+}
+
 // --- brute force ------------------------------------------------------------------------------
 
 enum class Verdict { OwnRight, ReferenceRight, BothAcceptable, BothWrong };
@@ -192,12 +204,22 @@ const std::vector<Reference> kBoxBoxReferences = {
       {Mismatch::Merged, 1.1e-2}}},
 };
 
+// Our near-face edge-edge sets (is_near_face) as a fraction of the samples, measured over 20,000
+// (seed 11), 300,000 (seed 7) and 1,000,000 (seed 99) samples: 3.28e-2, 3.43e-2, 3.46e-2. Our own
+// detector's rate, so gated on both sides: 2.8% to 4.1% is about five standard deviations of a
+// 20,000-sample run either way (a wider or narrower angle, or the points gone, shows). Each one must be judged right by brute force (deepest depth the penetration
+// along the normal, every point inside both boxes, the same set when A and B swap), its normal
+// within kEdgeNearFaceCos of a face normal, and its edge point agree with a reference's one point
+// wherever the reference finds the same edge axis.
+constexpr double kNearFaceLeast = 0.028, kNearFaceMost = 0.041;
+
 struct Tally {
   int samples = 0;
   int touching = 0;  // both report contacts
   std::map<Mismatch, int> mismatches;
   std::map<std::pair<Mismatch, Verdict>, int> verdicts;
   int edge_fudge = 0;  // Bullet edge-edge depths explained exactly by its fudge2 term
+  int near_face = 0;   // our near-face edge-edge sets whose edge point is the reference's one point
   // Largest differences among samples that agree: how far below the tolerances they stay.
   double worst_angle = 0.0, worst_depth = 0.0, worst_region = 0.0;
 
@@ -247,7 +269,10 @@ std::optional<Mismatch> classify(const Reference& ref, const BoxPair& p, const M
   if (*d.normal_angle > kNormalTolerance) return Mismatch::Normal;
   t.worst_angle = std::max(t.worst_angle, *d.normal_angle);
 
-  const int expected = std::min(own.size(), ref.max_points);
+  // Beside the edge point of two nearly aligned boxes we report the face's clipped points too
+  // (kEdgeNearFaceCos in box_box.hpp); the references give the edge point alone.
+  const bool near_face = is_near_face(own, sat);
+  const int expected = near_face ? 1 : std::min(own.size(), ref.max_points);
   if (ref.merges_close_points && theirs.size() < expected) return Mismatch::Merged;
 
   double depth_error = std::abs(*d.depth_difference);
@@ -265,6 +290,7 @@ std::optional<Mismatch> classify(const Reference& ref, const BoxPair& p, const M
   t.worst_region = std::max(t.worst_region, region);
 
   if (theirs.size() != expected) return Mismatch::Count;
+  if (near_face) ++t.near_face;
   return std::nullopt;
 }
 
@@ -305,6 +331,7 @@ void report(const Reference& ref, const Tally& t) {
     s << ',';
   }
   if (ref.merges_close_points) s << " edge depths explained by fudge2 " << t.edge_fudge << ',';
+  s << " near-face points beside their edge point " << t.near_face << ',';
   s << " worst agreeing angle " << t.worst_angle << " rad, depth " << t.worst_depth << " m, region "
     << t.worst_region << " m";
   WARN(s.str());
@@ -337,10 +364,20 @@ TEST_CASE("our box-box contacts agree with ODE and Bullet on random pairs", "[co
   const DetectorInfo& ours = find_detector(kOwnDetector);
   std::vector<Tally> tallies(kBoxBoxReferences.size());
   Dumper dump;
+  int near_face = 0, near_face_wrong = 0, near_face_off_axis = 0;
   for (int k = 0; k < n; ++k) {
     const BoxPair p = random_touching_pair(rng);
     const Manifold own = ours.box_box(p.a, p.b, DetectOptions{});
     const SatResult sat = box_box_sat(p.a, p.b);
+    if (is_near_face(own, sat)) {
+      ++near_face;
+      const std::vector<Finding> findings = judge_box_box(p.a, p.b, own, ours.box_box(p.b, p.a, DetectOptions{}));
+      if (!findings.empty()) {
+        ++near_face_wrong;
+        dump.box_box("own_near_face_" + std::to_string(test_seed(11)) + "_" + std::to_string(k), findings[0].why, p);
+      }
+      if (!near_a_face_normal(p, sat.normal)) ++near_face_off_axis;
+    }
     for (std::size_t r = 0; r < kBoxBoxReferences.size(); ++r) {
       compare_box_box(kBoxBoxReferences[r], p, k, own, sat, tallies[r], dump);
     }
@@ -351,7 +388,14 @@ TEST_CASE("our box-box contacts agree with ODE and Bullet on random pairs", "[co
     INFO(ref.name);
     CHECK(tallies[r].touching > n / 2);
     check_gates(tallies[r], ref.gates);
+    CHECK(tallies[r].near_face <= near_face);
   }
+  WARN("our near-face edge-edge sets: " << near_face << " of " << n << ", judged wrong " << near_face_wrong
+                                        << ", normal not near a face " << near_face_off_axis);
+  CHECK(near_face >= kNearFaceLeast * n);
+  CHECK(near_face <= kNearFaceMost * n);
+  CHECK(near_face_wrong == 0);
+  CHECK(near_face_off_axis == 0);
 }
 
 // --- box-plane --------------------------------------------------------------------------------
@@ -565,10 +609,13 @@ const std::vector<FixtureExpectation> kFixtures = {
     {"plane_deep_six", {{"own", 6}, {"ode", 4}, {"bullet", 1}, {"bullet_multipoint", 1}}, {}},
     {"plane_ode_missed_vertex", {{"own", 4}, {"ode", 3}, {"bullet", 1}, {"bullet_multipoint", 1}}, {}},
     {"bullet_merged_points", {{"own", 3}, {"ode", 3}, {"bullet", 2}}, {}},
+    // Our near-face edge-edge set: the references' one edge point, then two of the face's clipped points.
+    {"near_face_edge", {{"own", 3}, {"ode", 1}, {"bullet", 1, kDiffer}}, {}},  // Bullet's fudge2: 4e-6 m deeper
     {"face_edge_tie", {{"own", 3}, {"ode", 1, kDiffer}, {"bullet", 1, kDiffer}}, Verdict::BothAcceptable},
     // Where a reference is wrong.
     {"ode_deeper_edge_pair", {{"own", 1}, {"ode", 1, kDiffer}, {"bullet", 1, kDiffer}}, Verdict::OwnRight},
-    {"ode_edge_point_outside", {{"own", 1}, {"ode", 1, kDiffer}, {"bullet", 1, kDiffer}}, Verdict::OwnRight},
+    // Ours: the edge point, then two clipped points of B's face 0.034 rad from its normal (near-face).
+    {"ode_edge_point_outside", {{"own", 3}, {"ode", 1, kDiffer}, {"bullet", 1, kDiffer}}, Verdict::OwnRight},
     {"bullet_phantom_edge", {{"own", 0}, {"ode", 0}, {"bullet", 1, kDiffer}}, Verdict::OwnRight},
 };
 

@@ -51,7 +51,7 @@ const std::array kImpulseSettings = {
     EngineSetting{"shock_passes", Kind::Integer, "", "most passes over one level in shock propagation", 1,
                   kMaxSolverPasses, {},
                   [](EngineConfig& c, const json& v) { c.scene.solver.shock_passes = v.get<int>(); }},
-    EngineSetting{"recovery_passes", Kind::Integer, "", "passes of penetration recovery (split impulses)", 1,
+    EngineSetting{"recovery_passes", Kind::Integer, "", "most passes of penetration recovery per phase (split impulses)", 1,
                   kMaxSolverPasses, {},
                   [](EngineConfig& c, const json& v) { c.scene.solver.recovery_passes = v.get<int>(); }},
     EngineSetting{"penetration_recovery", Kind::Number, "1/step",

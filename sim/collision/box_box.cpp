@@ -230,7 +230,8 @@ namespace {
 // stored and reloaded across a call (a stalled store-to-load forward at every query).
 [[gnu::always_inline]] inline SatResult separating_axis_test(const OrientedBox& a,
                                                              const OrientedBox& b,
-                                                             const AxisTests& at, double stop_above) {
+                                                             const AxisTests& at, double stop_above,
+                                                             bool faces_only = false) {
   const Mat3& C = at.C;
   const Mat3& absC = at.absC;
   const Vec3& t = at.t;
@@ -264,7 +265,7 @@ namespace {
     face.kind = FeatureKind::FaceB;
     face.axis_b = best_face - 3;
   }
-  if (face.separation > stop_above) return face;
+  if (face.separation > stop_above || faces_only) return face;
 
   // Edge axes L = Ai x Bj, k = 3i + j. In A's frame L = e_i x C_j, so with i1 = i+1, i2 = i+2
   // (mod 3):
@@ -324,6 +325,46 @@ SatResult box_box_sat(const OrientedBox& a, const OrientedBox& b, double stop_ab
   return separating_axis_test(a, b, prepare(a, b), stop_above);
 }
 
+namespace {
+// The clipped points of the reference face `sat` names (FaceA or FaceB).
+void face_manifold(const OrientedBox& a, const OrientedBox& b, const AxisTests& at, const SatResult& sat,
+                   const CollisionSettings& settings, Manifold& out) {
+  if (sat.kind == FeatureKind::FaceA)
+    face_contacts(a, b, at.C.row(sat.axis_a).transpose(), sat.axis_a, -sat.normal, /*ref_is_a=*/true, settings,
+                  out);
+  else
+    face_contacts(b, a, at.C.col(sat.axis_b), sat.axis_b, sat.normal, /*ref_is_a=*/false, settings, out);
+}
+
+// A clipped face point this close to the edge-edge point, as a fraction of the smallest edge of
+// the two boxes, is the same corner: the clipped polygon has a vertex where the incident edge
+// crosses the reference face's side, which is the edge-edge crossing itself. A second point there
+// holds nothing more and slows the resting passes (pile_100's steps cost 15% more with it).
+constexpr double kSameCornerPerEdge = 0.01;
+
+// Beside the edge-edge point (out[0]) of two nearly aligned boxes, the clipped points of the best
+// face (kEdgeNearFaceCos) but the one at the edge point's corner, in the edge point's normal: each
+// point's depth is its gap along that normal (the face depth times the cosine between the
+// normals), never more than the edge point's, the pair's penetration along it.
+void add_near_face_points(const OrientedBox& a, const OrientedBox& b, const AxisTests& at, const SatResult& sat,
+                          const CollisionSettings& settings, Manifold& out) {
+  const SatResult face = separating_axis_test(a, b, at, settings.margin, /*faces_only=*/true);
+  const double cos_nf = std::abs(face.normal.dot(sat.normal));
+  if (cos_nf <= kEdgeNearFaceCos) return;
+  Manifold face_points;
+  face_manifold(a, b, at, face, settings, face_points);
+  const Contact edge = out[0];
+  const double same_corner = kSameCornerPerEdge * 2.0 * std::min(a.half.minCoeff(), b.half.minCoeff());
+  for (int i = 0; i < face_points.size() && out.size() < kMaxManifoldPoints; ++i) {
+    Contact c = face_points[i];
+    if ((c.position - edge.position).squaredNorm() < same_corner * same_corner) continue;
+    c.normal = sat.normal;  // one normal per manifold
+    c.depth = std::min(c.depth * cos_nf, edge.depth);
+    out.push_back(c);
+  }
+}
+}  // namespace
+
 void collide_box_box(const OrientedBox& a, const OrientedBox& b, const CollisionSettings& settings,
                      Manifold& out) {
   out.clear();
@@ -333,11 +374,8 @@ void collide_box_box(const OrientedBox& a, const OrientedBox& b, const Collision
 
   switch (sat.kind) {
     case FeatureKind::FaceA:
-      face_contacts(a, b, at.C.row(sat.axis_a).transpose(), sat.axis_a, -sat.normal, /*ref_is_a=*/true,
-                    settings, out);
-      break;
     case FeatureKind::FaceB:
-      face_contacts(b, a, at.C.col(sat.axis_b), sat.axis_b, sat.normal, /*ref_is_a=*/false, settings, out);
+      face_manifold(a, b, at, sat, settings, out);
       break;
     case FeatureKind::EdgeEdge: {
       // A's edge along Ai extreme toward B (along -n), B's edge along Bj extreme toward A (+n).
@@ -348,6 +386,7 @@ void collide_box_box(const OrientedBox& a, const OrientedBox& b, const Collision
                      b.axes.col(sat.axis_b), b.half[sat.axis_b], pa, pb);
       out.push_back({0.5 * (pa + pb), sat.normal, -sat.separation,
                      FeatureId::make(FeatureKind::EdgeEdge, ea.id, eb.id, 0)});
+      add_near_face_points(a, b, at, sat, settings, out);
       break;
     }
     case FeatureKind::Plane:

@@ -50,7 +50,7 @@ void ImpulseMethod::step(StepContext& ctx) {
 
   // Penetration recovery: pseudo-velocities that push overlaps apart (positions only).
   if (s.penetration_recovery > 0.0) {
-    recovery_.run(step);
+    recovery_.run(step, s.shock_propagation ? &shock_ : nullptr);
     ++ctx.counters.recovery_runs;
   }
 

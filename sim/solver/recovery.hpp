@@ -5,9 +5,11 @@
 // solver setting (`penetration_recovery`, 0 turns it off).
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "boxpile/sim/solver/impulse_step.hpp"
+#include "boxpile/sim/solver/shock_propagation.hpp"
 #include "boxpile/sim/step_storage.hpp"
 
 namespace boxpile {
@@ -16,18 +18,37 @@ class PenetrationRecovery {
  public:
   // Sizes the pseudo-velocities and the pseudo-impulses for `storage`.
   void reserve(const StepStorage& storage);
-  // Solves, in `recovery_passes` sequential passes over the contacts deeper than
-  // `penetration_slop`, for normal pseudo-impulses lambda >= 0 that give each point the
-  // separating pseudo-velocity beta (depth - slop) / dt, beta = `penetration_recovery`. Fills
-  // pseudo_v and pseudo_omega (per body).
-  void run(const ImpulseStep& step);
+  // Solves for normal pseudo-impulses lambda >= 0 that give each contact deeper than
+  // `penetration_slop` the separating pseudo-velocity beta (depth - slop) / dt (beta =
+  // `penetration_recovery`) and keep every contact from ending the step deeper than the slop,
+  // counting the velocities the step resolved. With `shock`'s levels (nullptr: shock propagation
+  // is off) each level from the ground up with the lower ones frozen, then every contact with
+  // both bodies movable; each phase in at most `recovery_passes` sequential passes, fewer once
+  // converged. Fills pseudo_v and pseudo_omega (per body).
+  void run(const ImpulseStep& step, const ShockPropagation* shock);
 
   const std::vector<Vec3>& pseudo_v() const { return pseudo_v_; }
   const std::vector<Vec3>& pseudo_omega() const { return pseudo_omega_; }
 
  private:
+  // The separating pseudo-velocity contact `c` asks for, m/s (see the .cpp).
+  static double pseudo_target(const SolverBodies& sb, const SolverContact& c, double beta, double dt);
+  // The passes over one group of contacts; bodies below `level` are frozen (none without `shock`).
+  void solve_phase(const ImpulseStep& step, std::span<const int> group, const ShockPropagation* shock, int level);
+
+  // A contact of the phase being solved, with what its passes read.
+  struct PhaseContact {
+    int index = 0;  // in step.contacts
+    bool a_moves = false, b_moves = false;
+    double inv_k_nn = 0.0;  // 1 / (n . K n) over the bodies that move
+  };
+
   std::vector<Vec3> pseudo_v_, pseudo_omega_;
-  std::vector<double> lambda_;
+  std::vector<char> pushed_;    // per body, whether a pseudo-impulse has reached it this step
+  std::vector<double> lambda_;  // per contact, its pseudo-impulse so far
+  std::vector<double> target_;  // per contact, the separating pseudo-velocity it asks for, m/s
+  std::vector<int> all_;        // every contact of the step
+  std::vector<PhaseContact> phase_;
 };
 
 }  // namespace boxpile

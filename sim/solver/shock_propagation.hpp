@@ -1,6 +1,8 @@
 // Shock propagation of the Guendelman-Bridson-Fedkiw step (sec. 7 of the paper).
 #pragma once
 
+#include <algorithm>
+#include <span>
 #include <vector>
 
 #include "boxpile/sim/solver/impulse_step.hpp"
@@ -20,6 +22,13 @@ class ShockPropagation {
   // Level of each body in the last run (-1: fixed; kUnsupported: not connected to the ground).
   const std::vector<int>& levels() const { return level_; }
   static constexpr int kUnsupported = 1 << 30;
+  // The highest level of the last run (-1 when no body is supported), the contacts of level l
+  // (those whose higher body is on level l), and a contact's level.
+  int top_level() const { return top_; }
+  std::span<const int> contacts_of_level(int l) const {
+    return {by_level_.data() + level_start_[l], by_level_.data() + level_start_[l + 1]};
+  }
+  int contact_level(const SolverContact& c) const { return std::max(level_of(c.a), level_of(c.b)); }
 
  private:
   // The stages of a run: the contact graph between movable bodies, each body's level, the
