@@ -14,7 +14,9 @@
 namespace boxpile {
 namespace {
 
-// After the collider's input closes, how long it may take to exit before it is killed.
+// After the collider's input closes (or it closes one of its ends), how long it may take to exit
+// before it is killed. Also the wait for its exit status once a pipe broke: the pipe closes before
+// the process can be reaped, and a machine under load may take a while in between.
 constexpr std::chrono::milliseconds kExitGrace{1000};
 constexpr std::chrono::milliseconds kExitPoll{10};
 
@@ -53,20 +55,26 @@ ColliderProcess::ColliderProcess(std::string command, std::chrono::milliseconds 
 
 ColliderProcess::~ColliderProcess() { stop(); }
 
+std::optional<int> ColliderProcess::wait_exit(std::chrono::milliseconds grace) {
+  if (pid_ <= 0) return std::nullopt;
+  const auto deadline = std::chrono::steady_clock::now() + grace;
+  int status = 0;
+  while (true) {
+    const pid_t done = waitpid(pid_, &status, WNOHANG);
+    if (done == pid_ || (done < 0 && errno != EINTR)) break;
+    if (std::chrono::steady_clock::now() > deadline) return std::nullopt;
+    usleep(static_cast<useconds_t>(std::chrono::microseconds(kExitPoll).count()));
+  }
+  pid_ = -1;
+  return status;
+}
+
 void ColliderProcess::stop() {
   if (to_child_ >= 0) close(to_child_);
   to_child_ = -1;
-  if (pid_ > 0) {
-    int status = 0;
-    const auto deadline = std::chrono::steady_clock::now() + kExitGrace;
-    while (waitpid(pid_, &status, WNOHANG) == 0) {
-      if (std::chrono::steady_clock::now() > deadline) {
-        kill(-pid_, SIGKILL);
-        waitpid(pid_, &status, 0);
-        break;
-      }
-      usleep(static_cast<useconds_t>(std::chrono::microseconds(kExitPoll).count()));
-    }
+  if (pid_ > 0 && !wait_exit(kExitGrace)) {
+    kill(-pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
     pid_ = -1;
   }
   if (from_child_ >= 0) close(from_child_);
@@ -85,10 +93,8 @@ void ColliderProcess::send(const std::string& line, const ContactQuery& query) {
     const ssize_t n = write(to_child_, line.data() + done, line.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) {
-      int status = 0;
-      const bool exited = waitpid(pid_, &status, WNOHANG) == pid_;
-      if (exited) pid_ = -1;
-      fail((exited ? describe_status(status) : std::string("closed its input")) + " before reading " +
+      const std::optional<int> status = wait_exit(kExitGrace);
+      fail((status ? describe_status(*status) : std::string("closed its input")) + " before reading " +
            query_label(query));
     }
     done += static_cast<std::size_t>(n);
@@ -116,11 +122,9 @@ std::string ColliderProcess::receive_line(const ContactQuery& query) {
     const ssize_t n = read(from_child_, chunk, sizeof chunk);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
-      int status = 0;
-      waitpid(pid_, &status, 0);
-      pid_ = -1;
-      fail(describe_status(status) + " before answering " + query_label(query) + " (output line " +
-           std::to_string(lines_read_ + 1) + ")");
+      const std::optional<int> status = wait_exit(kExitGrace);
+      fail((status ? describe_status(*status) : std::string("closed its output")) + " before answering " +
+           query_label(query) + " (output line " + std::to_string(lines_read_ + 1) + ")");
     }
     buffer_.append(chunk, static_cast<std::size_t>(n));
   }

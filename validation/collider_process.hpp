@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <sys/types.h>
@@ -33,6 +34,8 @@ class ColliderProcess {
   void send(const std::string& line, const ContactQuery& query);
   std::string receive_line(const ContactQuery& query);
   [[noreturn]] void fail(const std::string& what);
+  // Waits up to `grace` for the collider to exit: its wait status when it did (it is then reaped).
+  std::optional<int> wait_exit(std::chrono::milliseconds grace);
   void stop();
 
   std::string command_;

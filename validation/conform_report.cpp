@@ -191,14 +191,14 @@ void write_conform_report(const ConformRun& run, const fs::path& dir) {
                               {"failures_by_kind", counts_json(r)},
                               {"failures", failures_json(run)},
                               {"seconds", run.seconds}};
-  write_report_file(dir / "conform.json", doc.dump(2) + '\n');
+  write_report_file(dir / kConformJson, doc.dump(2) + '\n');
   std::ostringstream md;
   write_md_heading(md, run);
   write_md_settings(md, run);
   write_md_counts(md, r);
   write_md_worst(md, run);
   write_md_detectors(md, run);
-  write_report_file(dir / "conform.md", md.str());
+  write_report_file(dir / kConformMarkdown, md.str());
 }
 
 std::string conform_summary(const ConformRun& run) {

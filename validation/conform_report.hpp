@@ -12,6 +12,11 @@
 
 namespace boxpile {
 
+// The report's data (fixed keys, and the file that marks a directory as a conform report) and its
+// page for people.
+inline constexpr const char* kConformJson = "conform.json";
+inline constexpr const char* kConformMarkdown = "conform.md";
+
 // The judge's findings for one registered detector's answer to a query (empty: right).
 struct DetectorFindings {
   std::string detector;

@@ -34,21 +34,28 @@ std::array<std::atomic<bool>, kMaxStaged> g_staged_used{};
 std::atomic<int> g_scope_depth{0};
 volatile std::sig_atomic_t g_interrupted = 0;
 
-// Removes a file, or a directory and everything in it, with plain system calls. Used on the way
-// out of a dying process, where the C++ library cannot be trusted.
-void remove_tree(int parent_fd, const char* name) {
-  if (unlinkat(parent_fd, name, 0) == 0 || errno != EISDIR) return;
-  const int fd = openat(parent_fd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW);
+// How deep remove_tree() goes: a staging directory holds a report's files and a folder or two.
+constexpr int kMaxRemoveDepth = 16;
+// remove_tree()'s directory buffer, per level (on the stack: the handler must not allocate).
+constexpr std::size_t kDirentBuffer = 1024;
+
+// Removes a file, or a directory and everything in it, with system calls only (openat,
+// getdents64, unlinkat, close). Used on the way out of a dying process from a signal handler,
+// which may have interrupted malloc: opendir() and readdir() allocate, and would deadlock there.
+void remove_tree(int parent_fd, const char* name, int depth = 0) {
+  if (unlinkat(parent_fd, name, 0) == 0 || errno != EISDIR || depth > kMaxRemoveDepth) return;
+  const int fd = openat(parent_fd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
   if (fd < 0) return;
-  if (DIR* dir = fdopendir(fd)) {
-    while (const dirent* e = readdir(dir)) {
+  alignas(dirent64) char buffer[kDirentBuffer];
+  for (ssize_t n; (n = getdents64(fd, buffer, sizeof buffer)) > 0;) {
+    for (ssize_t at = 0; at < n;) {
+      const auto* e = reinterpret_cast<const dirent64*>(buffer + at);
+      at += e->d_reclen;
       if (std::strcmp(e->d_name, ".") == 0 || std::strcmp(e->d_name, "..") == 0) continue;
-      remove_tree(fd, e->d_name);
+      remove_tree(fd, e->d_name, depth + 1);
     }
-    closedir(dir);
-  } else {
-    close(fd);
   }
+  close(fd);
   unlinkat(parent_fd, name, AT_REMOVEDIR);
 }
 
@@ -186,6 +193,15 @@ StagedPath::~StagedPath() {
   if (slot_ >= 0) g_staged_used[static_cast<std::size_t>(slot_)].store(false);
 }
 
+HeldSignals::HeldSignals() {
+  sigset_t held;
+  sigemptyset(&held);
+  for (const int sig : {SIGINT, SIGTERM, SIGABRT}) sigaddset(&held, sig);
+  pthread_sigmask(SIG_BLOCK, &held, &previous_);
+}
+
+HeldSignals::~HeldSignals() { pthread_sigmask(SIG_SETMASK, &previous_, nullptr); }
+
 Staging create_staging(const fs::path& target, const fs::path& parent, OutputKind kind) {
   install_handlers_once();
   // A hidden sibling, so that the final rename stays on one file system.
@@ -194,15 +210,8 @@ Staging create_staging(const fs::path& target, const fs::path& parent, OutputKin
   name += target.filename().string();
   name += ".tmp-XXXXXX";
   std::string pattern = (parent / name).string();
-  // Signals sent from outside are held until the staging is registered: one arriving between
-  // its creation and its registration would leave it behind. (SIGABRT is among them, as another
-  // process may send it; abort() itself unblocks it, and the faults are never blocked.)
-  sigset_t held_signals, previous;
-  sigemptyset(&held_signals);
-  sigaddset(&held_signals, SIGINT);
-  sigaddset(&held_signals, SIGTERM);
-  sigaddset(&held_signals, SIGABRT);
-  pthread_sigmask(SIG_BLOCK, &held_signals, &previous);
+  // A signal arriving between the staging's creation and its registration would leave it behind.
+  const HeldSignals held;
   bool created = false;
   if (kind == OutputKind::File) {
     const int fd = mkstemp(pattern.data());
@@ -220,11 +229,9 @@ Staging create_staging(const fs::path& target, const fs::path& parent, OutputKin
     } catch (...) {
       std::error_code ignored;
       fs::remove(staging.path, ignored);
-      pthread_sigmask(SIG_SETMASK, &previous, nullptr);
       throw;
     }
   }
-  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
   if (!created) refuse(target, "cannot write in " + parent.string() + ": " + std::strerror(create_error));
   return staging;
 }

@@ -23,6 +23,8 @@
 // them too before the process dies.
 #pragma once
 
+#include <signal.h>
+
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -70,9 +72,24 @@ class StagedPath {
   int slot_ = -1;
 };
 
+// While one is alive, SIGINT, SIGTERM and SIGABRT sent from outside are held back (delivered when
+// it ends): for the few system calls during which a staged path and its registration disagree
+// (between a staging's creation and its registration, between the renames of a commit). abort()
+// itself unblocks SIGABRT, and faults are never held.
+class HeldSignals {
+ public:
+  HeldSignals();
+  ~HeldSignals();
+  HeldSignals(const HeldSignals&) = delete;
+  HeldSignals& operator=(const HeldSignals&) = delete;
+
+ private:
+  sigset_t previous_;
+};
+
 // A staging file or directory beside a target: ".NAME.tmp-XXXXXX" in `parent`, registered for
-// removal. boxpile's signal handlers are installed before it exists, and SIGINT and SIGTERM are
-// held back from its creation until it is registered, so that no signal finds it unregistered.
+// removal. boxpile's signal handlers are installed before it exists, and signals are held back
+// (HeldSignals) from its creation until it is registered, so that no signal finds it unregistered.
 // OutputError ("cannot write in PARENT: ...") when it cannot be created.
 struct Staging {
   std::filesystem::path path;

@@ -558,10 +558,10 @@ void write_replay(const CompareResult& r, const json& report, const fs::path& di
 
 void write_report(const CompareResult& r, const fs::path& dir, std::vector<std::string>& notes) {
   const json report = report_json(r);
-  write_report_file(dir / "report.json", report.dump(1) + '\n');
+  write_report_file(dir / kReportJson, report.dump(1) + '\n');
   write_replay(r, report, dir, notes);
   const std::vector<std::string> rendered = write_plots(dir, report_plots(r), notes);
-  write_report_file(dir / "report.md", report_markdown(r, rendered, notes));
+  write_report_file(dir / kReportMarkdown, report_markdown(r, rendered, notes));
 }
 
 }  // namespace boxpile

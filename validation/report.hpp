@@ -13,6 +13,11 @@
 
 namespace boxpile {
 
+// The report's data (fixed keys, and the file that marks a directory as a compare report) and its
+// page for people.
+inline constexpr const char* kReportJson = "report.json";
+inline constexpr const char* kReportMarkdown = "report.md";
+
 nlohmann::json report_json(const CompareResult& result);
 
 // The plots of a report: energy (impacts marked), deepest penetration, tallest stack, and the

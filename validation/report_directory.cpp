@@ -86,7 +86,10 @@ void ReportDirectory::commit() {
     fs::remove_all(staging_, ec);
     return;
   }
-  // No exchange on this file system: move the old report aside, the new one in, the old one out.
+  // No exchange on this file system: move the old report aside, the new one in, the old one out;
+  // signals wait (a signal between the renames would delete the new report and leave the old
+  // one aside, unregistered).
+  const HeldSignals held;
   const fs::path old = staging_.string() + "-old";
   fs::rename(target_, old, ec);
   if (ec) refuse(target_, "cannot replace the previous report: " + ec.message());

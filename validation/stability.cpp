@@ -24,8 +24,9 @@ double work_of(const Scene& scene) {
 
 }  // namespace
 
-bool StabilityResult::own_passed() const {
-  return std::all_of(cells.begin(), cells.end(), [](const StabilityCell& c) { return c.engine != "own" || c.passed; });
+int StabilityResult::own_failures() const {
+  return static_cast<int>(
+      std::count_if(cells.begin(), cells.end(), [](const StabilityCell& c) { return c.engine == "own" && !c.passed; }));
 }
 
 StabilityCell run_stability_cell(const Scene& scene, std::string_view engine_name, const StabilitySettings& settings,

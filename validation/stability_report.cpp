@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
-#include <stdexcept>
+
+#include "boxpile/validation/report_directory.hpp"
 
 namespace boxpile {
 namespace {
@@ -42,6 +42,12 @@ json measures_json(const RunMeasures& m) {
 }
 
 std::string plot_stem(const StabilityCell& c) { return c.scene + "_" + c.engine; }
+
+// What our engine did: "passes every scene" or "fails N scene(s)".
+std::string own_verdict(const StabilityResult& r) {
+  const int failed = r.own_failures();
+  return failed == 0 ? "passes every scene" : "fails " + std::to_string(failed) + " scene(s)";
+}
 
 }  // namespace
 
@@ -113,10 +119,7 @@ std::string stability_markdown(const StabilityResult& r, const std::vector<std::
                                const std::vector<std::string>& notes) {
   std::ostringstream md;
   md << "# Stability of the hard scenes\n\n";
-  int own_failed = 0;
-  for (const StabilityCell& c : r.cells) own_failed += (c.engine == "own" && !c.passed) ? 1 : 0;
-  md << (r.own_passed() ? "Our engine passes every scene." : "Our engine fails " + std::to_string(own_failed) + " scene(s).")
-     << " Each cell shows the check that decided it: the first failing one, or the one closest to its limit. "
+  md << "Our engine " << own_verdict(r) << ". Each cell shows the check that decided it: the first failing one, or the one closest to its limit. "
         "A reference engine's failure is a finding, not an error of boxpile.\n\n";
   md << "| scene | bodies |";
   for (const std::string& e : r.engines) md << ' ' << e << " |";
@@ -174,16 +177,20 @@ std::string stability_markdown(const StabilityResult& r, const std::vector<std::
   return md.str();
 }
 
-void write_stability_report(const StabilityResult& r, const fs::path& dir, std::vector<std::string>& notes) {
-  {
-    std::ofstream os(dir / "stability.json");
-    os << stability_json(r).dump(1) << '\n';
-    if (!os.flush()) throw std::runtime_error((dir / "stability.json").string() + ": write failed");
+std::string stability_summary(const StabilityResult& r) {
+  std::ostringstream os;
+  for (const StabilityCell& c : r.cells) {
+    if (c.passed) continue;
+    os << (c.engine == "own" ? "FAIL " : "finding ") << c.scene << " in " << c.engine << ": " << cell_text(c) << '\n';
   }
+  os << "our engine " << own_verdict(r) << '\n';
+  return os.str();
+}
+
+void write_stability_report(const StabilityResult& r, const fs::path& dir, std::vector<std::string>& notes) {
+  write_report_file(dir / kStabilityJson, stability_json(r).dump(1) + '\n');
   const std::vector<std::string> rendered = write_plots(dir, stability_plots(r), notes);
-  std::ofstream os(dir / "stability.md");
-  os << stability_markdown(r, rendered, notes);
-  if (!os.flush()) throw std::runtime_error((dir / "stability.md").string() + ": write failed");
+  write_report_file(dir / kStabilityMarkdown, stability_markdown(r, rendered, notes));
 }
 
 }  // namespace boxpile

@@ -14,6 +14,11 @@
 
 namespace boxpile {
 
+// The report's data (fixed keys, and the file that marks a directory as a stability report) and
+// its page for people.
+inline constexpr const char* kStabilityJson = "stability.json";
+inline constexpr const char* kStabilityMarkdown = "stability.md";
+
 nlohmann::json stability_json(const StabilityResult& result);
 
 // One plot per failing cell: total and kinetic energy against time (log scale for the kinetic).
@@ -26,7 +31,12 @@ std::string stability_markdown(const StabilityResult& result, const std::vector<
 // What a cell shows in the matrix: "pass" or "FAIL", with the deciding figure.
 std::string cell_text(const StabilityCell& cell);
 
-// Writes stability.json, stability.md and the plots into `dir`.
+// For the terminal: a line per failing cell ("FAIL" for our engine, "finding" for a reference
+// engine) and whether our engine passes every scene.
+std::string stability_summary(const StabilityResult& result);
+
+// Writes stability.json, stability.md and the plots into `dir`. Plots that gnuplot cannot render
+// are reported in `notes` (and in stability.md).
 void write_stability_report(const StabilityResult& result, const std::filesystem::path& dir,
                             std::vector<std::string>& notes);
 

@@ -1,16 +1,14 @@
 #include "boxpile/validation/sweep_report.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/validation/pareto.hpp"
+#include "boxpile/validation/report_directory.hpp"
 #include "boxpile/validation/sweep_plots.hpp"
 
 namespace boxpile {
@@ -26,12 +24,6 @@ std::string format(double x, const char* fmt = "%.3g") {
   char buf[64];
   std::snprintf(buf, sizeof buf, fmt, x);
   return buf;
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream os(path);
-  os << text;
-  if (!os.flush()) throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(errno));
 }
 
 // Cheapest cell of `engine` (any engine when empty) whose error is at most `level`.
@@ -306,11 +298,18 @@ SweepReport read_sweep_json(const std::string& path) {
   return r;
 }
 
-void write_sweep_report(const SweepReport& r, const fs::path& dir, std::vector<std::string>& warnings) {
-  write_text(dir / "sweep.json", sweep_json(r).dump(1) + '\n');
-  write_text(dir / "sweep.csv", sweep_csv(r));
-  const std::vector<std::string> plots = write_sweep_plots(r, dir, warnings);
-  write_text(dir / "sweep.md", sweep_md(r, plots));
+void write_sweep_report(const SweepReport& r, const fs::path& dir, std::vector<std::string>& notes) {
+  write_report_file(dir / kSweepJson, sweep_json(r).dump(1) + '\n');
+  write_report_file(dir / "sweep.csv", sweep_csv(r));
+  const std::vector<std::string> plots = write_sweep_plots(r, dir, notes);
+  write_report_file(dir / kSweepMarkdown, sweep_md(r, plots));
+}
+
+std::string sweep_summary(const SweepReport& r) {
+  const auto failing = std::count_if(r.cells.begin(), r.cells.end(), [](const CellResult& c) { return !c.measures.passed; });
+  std::ostringstream os;
+  os << r.cells.size() << " cells, " << failing << " failing a check\n";
+  return os.str();
 }
 
 }  // namespace boxpile

@@ -15,6 +15,11 @@
 
 namespace boxpile {
 
+// The report's data (fixed keys, and the file that marks a directory as a sweep report) and its
+// page for people.
+inline constexpr const char* kSweepJson = "sweep.json";
+inline constexpr const char* kSweepMarkdown = "sweep.md";
+
 struct SweepReport {
   std::string grid_file;
   nlohmann::json grid;             // the grid document as read
@@ -43,9 +48,12 @@ nlohmann::json sweep_json(const SweepReport& report);
 // Reads a sweep.json; InputError naming the file for anything missing or malformed.
 SweepReport read_sweep_json(const std::string& path);
 
+// For the terminal: how many cells, how many of them fail a check.
+std::string sweep_summary(const SweepReport& report);
+
 // Writes sweep.json, sweep.csv, sweep.md and the plots into `dir`. Plots that gnuplot cannot
-// render leave their data and script, and a note in `warnings`.
+// render leave their data and script, and a note in `notes`.
 void write_sweep_report(const SweepReport& report, const std::filesystem::path& dir,
-                        std::vector<std::string>& warnings);
+                        std::vector<std::string>& notes);
 
 }  // namespace boxpile

@@ -1,18 +1,14 @@
-#include <algorithm>
-#include <filesystem>
 #include <iostream>
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/cli/commands.hpp"
-#include "boxpile/validation/cli/interruptible.hpp"
 #include "boxpile/validation/cli/progress.hpp"
+#include "boxpile/validation/cli/report_command.hpp"
 #include "boxpile/validation/compare.hpp"
 #include "boxpile/validation/data_directory.hpp"
 #include "boxpile/validation/engine_factory.hpp"
-#include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/report.hpp"
-#include "boxpile/validation/report_directory.hpp"
 
 namespace boxpile::cli {
 
@@ -31,21 +27,17 @@ void add_compare_command(CLI::App& app, CompareOptions& options) {
   cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() +
                       " (own: the scene's solver.method; default: own,ode,bullet)")->delimiter(',');
   add_time_options(*cmd, options.dt, options.duration);
-  cmd->add_option("--report", options.report,
-                  "Report directory, replaced as a whole when the report is complete (created if absent; an "
-                  "existing one must be empty or hold a previous report)")
-      ->capture_default_str();
+  add_report_option(*cmd, options.report, "");
   add_limit_options(*cmd, options.limits, false);
 }
 
 int run_compare_command(const CompareOptions& options) {
   CompareSettings settings;
   if (!options.engines.empty()) settings.engines = options.engines;
-  for (const std::string& name : settings.engines) check_engine_name(name);
-  check_distinct(settings.engines, "--engines");
+  check_engines(settings.engines, "--engines");
   // Before the run (before even loading): a report directory that cannot be written fails now,
   // not after minutes.
-  ReportDirectory dir(options.report, {options.scene});
+  ReportDirectory dir(options.report, {options.scene}, kReportJson);
   Scene scene = load_scene(options.scene, options.limits.load());
   apply_time_options(scene, options.dt, options.duration, options.limits);
 
@@ -55,24 +47,15 @@ int run_compare_command(const CompareOptions& options) {
   };
   std::cerr << "boxpile compare: " << scene.name << " (" << scene.source << "), " << step_count(scene.time)
             << " steps per run, each engine twice\n";
-  const std::optional<CompareResult> ran = run_interruptible([&] { return run_compare(scene, settings); });
-  if (!ran) return kExitInterrupted;
-  const CompareResult& result = *ran;
-
-  std::vector<std::string> notes;
-  write_report(result, dir.staging(), notes);
-  dir.commit();
-
-  std::cout << summary_table(result);
-  for (const std::string& n : notes) std::cerr << "boxpile: warning: " << n << '\n';
+  const std::optional<CompareResult> result = run_and_report(
+      dir, [&] { return run_compare(scene, settings); }, write_report, summary_table, kReportMarkdown);
+  if (!result) return kExitInterrupted;
   bool failed = false;
-  for (const EngineRun& run : result.runs) {
+  for (const EngineRun& run : result->runs) {
     if (!run.failure) continue;
     std::cerr << "boxpile: error: " << run.engine << " failed: " << *run.failure << '\n';
     failed = true;
   }
-  const std::filesystem::path md = std::filesystem::absolute(dir.target()) / "report.md";
-  std::cout << "report: " << md.lexically_normal().string() << '\n';
   return failed ? kExitFailure : kExitOk;
 }
 

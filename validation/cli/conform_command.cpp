@@ -1,14 +1,12 @@
 #include <chrono>
 #include <cmath>
-#include <filesystem>
-#include <iostream>
 
 #include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/report_command.hpp"
 #include "boxpile/validation/collider_process.hpp"
 #include "boxpile/validation/conform_report.hpp"
 #include "boxpile/validation/data_directory.hpp"
 #include "boxpile/validation/judge/check_collider.hpp"
-#include "boxpile/validation/report_directory.hpp"
 
 namespace boxpile::cli {
 namespace {
@@ -48,7 +46,8 @@ CheckOptions check_options(const ConformOptions& options, const std::string& cas
 void add_conform_command(CLI::App& app, ConformOptions& options) {
   CLI::App* cmd = app.add_subcommand(
       "conform", "Judge an outside box-box/box-plane collider through the line protocol (docs/conform.md): "
-                 "the contact fixtures and random pose pairs, held to the conformance gates");
+                 "the contact fixtures and random pose pairs, held to the conformance gates (conform.json, "
+                 "conform.md, failures/)");
   cmd->add_option("--collider", options.collider,
                   "Command that reads one query per line on stdin and writes one answer per line "
                   "(run through /bin/sh)")
@@ -65,10 +64,7 @@ void add_conform_command(CLI::App& app, ConformOptions& options) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_flag("--no-swap", options.no_swap, "Do not ask each box-box query again with A and B swapped");
-  cmd->add_option("--report", options.report,
-                  "Report directory: conform.json, conform.md, failures/ (replaced as a whole; an existing one "
-                  "must be empty or hold a previous conform report)")
-      ->required();
+  add_report_option(*cmd, options.report, "conform")->required();
 }
 
 int run_conform_command(const ConformOptions& options) {
@@ -77,7 +73,7 @@ int run_conform_command(const ConformOptions& options) {
   run.cases = cases_folder(options);
   run.options = check_options(options, run.cases);
   // Before the run: a report directory that cannot be written fails now.
-  ReportDirectory dir(options.report, {}, "conform.json");
+  ReportDirectory dir(options.report, {}, kConformJson);
 
   const auto start = std::chrono::steady_clock::now();
   {
@@ -88,10 +84,7 @@ int run_conform_command(const ConformOptions& options) {
   judge_detectors(run);
 
   write_conform_report(run, dir.staging());
-  dir.commit();
-  std::cout << conform_summary(run);
-  const std::filesystem::path md = std::filesystem::absolute(dir.target()) / "conform.md";
-  std::cout << "report: " << md.lexically_normal().string() << '\n';
+  finish_report(dir, {}, conform_summary(run), kConformMarkdown);
   return run.result.within_gates() ? kExitOk : kExitFailure;
 }
 

@@ -6,6 +6,22 @@
 
 namespace boxpile::cli {
 
+// One line per run (or cell) on stderr: rewritten in place on a terminal at each new whole
+// percent, written once when the run ends otherwise (a log stays readable).
+class StatusLine {
+ public:
+  StatusLine();
+  // Whether run `index` at `fraction` of its work needs its line drawn now.
+  bool due(int index, double fraction);
+  // Draws the line; `done` (the run's end) finishes it with a newline.
+  void draw(std::string_view text, bool done);
+
+ private:
+  bool terminal_;
+  int index_ = -1;
+  int percent_ = -1;
+};
+
 // Where a run is: run `index` of `total`, `fraction` of its steps done.
 struct RunProgress {
   std::string_view engine;
@@ -15,17 +31,14 @@ struct RunProgress {
   double fraction = 0.0;
 };
 
-// One line per run: updated in place on a terminal, written once when the run ends otherwise
-// (a log stays readable).
+// A StatusLine per run: engine, note and percent, and at the end the run's wall time.
 class ProgressPrinter {
  public:
-  ProgressPrinter();
   void operator()(const RunProgress& p);
 
  private:
-  bool terminal_;
-  int index_ = -1;
-  int percent_ = -1;
+  StatusLine line_;
+  int timed_index_ = -1;  // the run start_ belongs to
   std::chrono::steady_clock::time_point start_;
 };
 

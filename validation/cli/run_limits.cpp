@@ -53,6 +53,11 @@ void check_distinct(const std::vector<std::string>& names, std::string_view flag
   }
 }
 
+void check_engines(const std::vector<std::string>& names, std::string_view flag) {
+  for (const std::string& name : names) check_engine_name(name);
+  check_distinct(names, flag);
+}
+
 void check_iterations(int iterations, const RunLimits& limits) {
   if (iterations < 1 || iterations > limits.max_iterations) {
     throw UsageError("--iterations: must be in [1, " + std::to_string(limits.max_iterations) + "], got " +

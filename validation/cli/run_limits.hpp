@@ -51,6 +51,9 @@ void apply_time_options(Scene& scene, const std::optional<double>& dt, const std
 // naming `flag` and the repeated name.
 void check_distinct(const std::vector<std::string>& names, std::string_view flag);
 
+// Engines that make_engine() can build (UnknownEngine otherwise), each once (check_distinct).
+void check_engines(const std::vector<std::string>& names, std::string_view flag);
+
 // Solver iterations within [1, max_iterations].
 void check_iterations(int iterations, const RunLimits& limits);
 

@@ -9,11 +9,10 @@
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/validation/cli/commands.hpp"
-#include "boxpile/validation/cli/interruptible.hpp"
+#include "boxpile/validation/cli/report_command.hpp"
 #include "boxpile/validation/data_directory.hpp"
-#include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/engine_settings.hpp"
-#include "boxpile/validation/report_directory.hpp"
+#include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/sweep_report.hpp"
 #include "boxpile/validation/sweep_runner.hpp"
 
@@ -22,8 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The file that marks a directory as a sweep report (and so safe to replace).
-constexpr const char* kSweepMarker = "sweep.json";
 // The grids installed with boxpile, under its data folder.
 constexpr const char* kInstalledGrids = "benchmarks/grids";
 
@@ -74,18 +71,6 @@ std::string find_grid(const std::string& grid) {
                                  (known.empty() ? "" : " (installed: " + known + ")"));
 }
 
-int finish(const SweepReport& report, ReportDirectory& dir) {
-  std::vector<std::string> warnings;
-  write_sweep_report(report, dir.staging(), warnings);
-  dir.commit();
-  for (const std::string& w : warnings) std::cerr << "boxpile: warning: " << w << '\n';
-  int failing = 0;
-  for (const CellResult& c : report.cells) failing += c.measures.passed ? 0 : 1;
-  std::cout << report.cells.size() << " cells, " << failing << " failing a check\n"
-            << "report: " << (fs::absolute(dir.target()) / "sweep.md").lexically_normal().string() << '\n';
-  return kExitOk;
-}
-
 }  // namespace
 
 void add_sweep_command(CLI::App& app, SweepOptions& options) {
@@ -94,10 +79,7 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
   cmd->add_option("grid", options.grid,
                   "Grid file (JSON, docs/sweeps.md), or the name of an installed grid (accuracy_cost, lab_report, pareto, settled)")
       ->required();
-  cmd->add_option("--report", options.report,
-                  "Report directory, replaced as a whole when the report is complete (an existing one must be "
-                  "empty or hold a previous sweep report)")
-      ->capture_default_str();
+  add_report_option(*cmd, options.report, "sweep");
   cmd->add_option("--shard", options.shard, "Run shard I of N (I/N, 1-based): cells whose position k has k mod N = I-1")
       ->capture_default_str();
   cmd->add_option("--jobs", options.jobs, "Run cells in J parallel processes (their timings then ran side by side)")
@@ -123,7 +105,7 @@ int run_sweep_command(const SweepOptions& options) {
   // report directory.
   const std::string grid_file = find_grid(options.grid);
   const SweepGrid grid = load_grid(grid_file);
-  ReportDirectory dir(options.report, {grid_file}, kSweepMarker);
+  ReportDirectory dir(options.report, {grid_file}, kSweepJson);
   const std::vector<CellSpec> all = grid_cells(grid);
   std::vector<CellSpec> cells;
   std::copy_if(all.begin(), all.end(), std::back_inserter(cells), [&](const CellSpec& c) { return in_shard(c, shard); });
@@ -151,10 +133,14 @@ int run_sweep_command(const SweepOptions& options) {
   run.jobs = options.jobs;
   run.work_dir = dir.staging() / "cells";
   run.progress = print_progress;
-  auto ran = run_interruptible([&] { return run_sweep_cells(grid, cells, run); });
-  if (!ran) return kExitInterrupted;
-  report.cells = std::move(*ran);
-  return finish(report, dir);
+  const auto ran = run_and_report(
+      dir,
+      [&] {
+        report.cells = run_sweep_cells(grid, cells, run);
+        return std::move(report);
+      },
+      write_sweep_report, sweep_summary, kSweepMarkdown);
+  return ran ? kExitOk : kExitInterrupted;
 }
 
 int run_settings_command() {
@@ -165,11 +151,11 @@ int run_settings_command() {
 int run_sweep_merge_command(const SweepOptions& options) {
   std::vector<SweepReport> parts;
   for (const std::string& in : options.merge_inputs) {
-    const fs::path file = fs::path(in) / kSweepMarker;
+    const fs::path file = fs::path(in) / kSweepJson;
     if (!fs::is_regular_file(file)) throw InputError(in, "", "no sweep.json here: not a sweep report");
     parts.push_back(read_sweep_json(file.string()));
   }
-  ReportDirectory dir(options.report, {}, kSweepMarker);
+  ReportDirectory dir(options.report, {}, kSweepJson);
   SweepReport merged;
   merged.grid_file = parts.front().grid_file;
   merged.grid = parts.front().grid;
@@ -198,7 +184,8 @@ int run_sweep_merge_command(const SweepOptions& options) {
   }
   std::sort(merged.cells.begin(), merged.cells.end(),
             [](const CellResult& a, const CellResult& b) { return a.spec.index < b.spec.index; });
-  return finish(merged, dir);
+  report_to(dir, merged, write_sweep_report, sweep_summary, kSweepMarkdown);
+  return kExitOk;
 }
 
 }  // namespace boxpile::cli

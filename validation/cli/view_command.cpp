@@ -22,7 +22,7 @@ nlohmann::json read_json(const fs::path& path) {
 
 // A report directory's page data (replay.json), with the marks renewed from its report.json.
 nlohmann::json report_replay(const fs::path& dir) {
-  const fs::path report = dir / "report.json", data = dir / kReplayData;
+  const fs::path report = dir / kReportJson, data = dir / kReplayData;
   if (!fs::is_regular_file(report) || !fs::is_regular_file(data)) {
     throw InputError(dir.string(), "", std::string("not a boxpile report directory: it needs report.json and ") +
                                            kReplayData + " (written by boxpile compare)");
@@ -44,7 +44,7 @@ nlohmann::json run_replay(const fs::path& file) {
 // The files a page is made from: an output may be none of them.
 std::vector<fs::path> view_inputs(const fs::path& input, bool directory) {
   if (!directory) return {input};
-  return {input / "report.json", input / kReplayData};
+  return {input / kReportJson, input / kReplayData};
 }
 
 }  // namespace
