@@ -96,8 +96,8 @@ void ImpulseMethod::integrate_positions(StepContext& ctx) {
     Vec3 v = explicit_euler ? start_v_[i] : b.v;
     Vec3 w = explicit_euler ? start_omega_[i] : b.omega;
     if (s.penetration_recovery > 0.0) {  // pushed apart, positions only
-      v += recovery_.pseudo_v()[i];
-      w += recovery_.pseudo_omega()[i];
+      v += recovery_.pseudo_v(i);
+      w += recovery_.pseudo_omega(i);
     }
     advance_pose(b, v, w, ctx.dt, ctx.scene.effects.gyroscopic, ctx.counters);
   }
