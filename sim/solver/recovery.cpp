@@ -29,7 +29,9 @@ double PenetrationRecovery::pseudo_target(const SolverBodies& sb, const SolverCo
 }
 
 void PenetrationRecovery::reserve(const StepStorage& storage) {
-  body_.reserve(storage.bodies + 1);
+  pseudo_v_.reserve(storage.bodies);
+  pseudo_omega_.reserve(storage.bodies);
+  pushed_.reserve(storage.bodies);
   lambda_.reserve(storage.contacts());
   target_.reserve(storage.contacts());
   all_.reserve(storage.contacts());
@@ -41,12 +43,9 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
   const std::vector<SolverContact>& contacts = step.contacts;
   const double beta = step.settings().penetration_recovery;
   const std::size_t n = sb.bodies.size();
-  body_.resize(n + 1);
-  body_[0] = PseudoBody{};  // the ground
-  for (std::size_t i = 0; i < n; ++i) {
-    const RigidBody& b = sb.bodies[i];
-    body_[i + 1] = PseudoBody{Vec3::Zero(), Vec3::Zero(), b.inv_inertia_world, b.inv_mass, false};
-  }
+  pseudo_v_.assign(n, Vec3::Zero());
+  pseudo_omega_.assign(n, Vec3::Zero());
+  pushed_.assign(n, 0);
   lambda_.assign(contacts.size(), 0.0);
   target_.resize(contacts.size());
   all_.clear();
@@ -84,14 +83,14 @@ void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const i
     const double k_nn = c.n.dot(((a_moves ? c.Ka : Mat3::Zero()) + (b_moves ? c.Kb : Mat3::Zero())) * c.n);
     if (k_nn > 0.0) phase_.push_back({k, a_moves, b_moves, 1.0 / k_nn});
   }
-  // omega x r as W omega (W = [r]x^T, the same products and sums as the cross product, so the
-  // same result to the bit): see SolverBodyArray::relative_velocity. The ground's slot is at rest.
-  auto point_velocity = [&](int body, const Mat3& W) -> Vec3 { return at(body).v + W * at(body).omega; };
+  auto point_velocity = [&](int body, const Vec3& r) -> Vec3 {
+    return body < 0 ? Vec3::Zero() : Vec3(pseudo_v_[body] + pseudo_omega_[body].cross(r));
+  };
   auto push = [&](int body, const Vec3& impulse, const Vec3& r) {
-    PseudoBody& b = at(body);
-    b.v += b.inv_mass * impulse;
-    b.omega += b.inv_inertia * r.cross(impulse);
-    b.pushed = true;
+    const RigidBody& b = sb.get(body);
+    pseudo_v_[body] += b.inv_mass * impulse;
+    pseudo_omega_[body] += b.inv_inertia_world * r.cross(impulse);
+    pushed_[body] = 1;
   };
 
   for (int pass = 0; pass < step.settings().recovery_passes; ++pass) {
@@ -100,9 +99,11 @@ void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const i
       const SolverContact& c = step.contacts[pc.index];
       // A contact that asks for no push and has none, between bodies nothing has pushed yet, would
       // stay at zero: skipped (most of a pile's resting contacts in the first passes).
-      if (target_[pc.index] <= 0.0 && lambda_[pc.index] == 0.0 && !at(c.a).pushed && !at(c.b).pushed) continue;
+      if (target_[pc.index] <= 0.0 && lambda_[pc.index] == 0.0 && !(c.a >= 0 && pushed_[c.a]) &&
+          !(c.b >= 0 && pushed_[c.b]))
+        continue;
       // Normal-only: lambda += (target - u_n) / (n . K n), kept >= 0 (pushes only).
-      const double un = c.n.dot(point_velocity(c.a, c.Wa) - point_velocity(c.b, c.Wb));
+      const double un = c.n.dot(point_velocity(c.a, c.ra) - point_velocity(c.b, c.rb));
       const double lambda = std::max(0.0, lambda_[pc.index] + (target_[pc.index] - un) * pc.inv_k_nn);
       const double change = lambda - lambda_[pc.index];
       if (change == 0.0) continue;

@@ -27,9 +27,8 @@ class PenetrationRecovery {
   // converged. Fills pseudo_v and pseudo_omega (per body).
   void run(const ImpulseStep& step, const ShockPropagation* shock);
 
-  // Body i's pseudo-velocities, m/s and rad/s.
-  const Vec3& pseudo_v(std::size_t i) const { return body_[i + 1].v; }
-  const Vec3& pseudo_omega(std::size_t i) const { return body_[i + 1].omega; }
+  const std::vector<Vec3>& pseudo_v() const { return pseudo_v_; }
+  const std::vector<Vec3>& pseudo_omega() const { return pseudo_omega_; }
 
  private:
   // The separating pseudo-velocity contact `c` asks for, m/s (see the .cpp).
@@ -44,20 +43,8 @@ class PenetrationRecovery {
     double inv_k_nn = 0.0;  // 1 / (n . K n) over the bodies that move
   };
 
-  // A body as the passes see it: its pseudo-velocities and inverse mass properties side by side
-  // (one or two cache lines, not a RigidBody's several), as the solver-body array keeps the
-  // velocities (solver_body.hpp). Slot 0 is the ground: immovable, never pushed.
-  struct PseudoBody {
-    Vec3 v = Vec3::Zero();      // pseudo-velocity, m/s
-    Vec3 omega = Vec3::Zero();  // pseudo angular velocity, rad/s
-    Mat3 inv_inertia = Mat3::Zero();  // world axes
-    double inv_mass = 0.0;
-    bool pushed = false;  // whether a pseudo-impulse has reached it this step
-  };
-  // Body index (kGround = -1 for the ground) to its slot.
-  PseudoBody& at(int body) { return body_[static_cast<std::size_t>(body + 1)]; }
-
-  std::vector<PseudoBody> body_;
+  std::vector<Vec3> pseudo_v_, pseudo_omega_;
+  std::vector<char> pushed_;    // per body, whether a pseudo-impulse has reached it this step
   std::vector<double> lambda_;  // per contact, its pseudo-impulse so far
   std::vector<double> target_;  // per contact, the separating pseudo-velocity it asks for, m/s
   std::vector<int> all_;        // every contact of the step
