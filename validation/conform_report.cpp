@@ -39,7 +39,10 @@ std::string detectors_text(const std::vector<DetectorFindings>& judged) {
   std::string text;
   for (const DetectorFindings& d : judged) {
     std::string kinds;
-    for (const Finding& f : d.findings) kinds += (kinds.empty() ? "" : "+") + std::string(failure_name(f.kind));
+    for (const Finding& f : d.findings) {
+      if (!kinds.empty()) kinds += '+';
+      kinds += failure_name(f.kind);
+    }
     text += (text.empty() ? "" : ", ") + d.detector + " " + (kinds.empty() ? "right" : kinds);
   }
   return text;

@@ -155,7 +155,10 @@ std::vector<std::string> write_sweep_plots(const SweepReport& r, const fs::path&
     // Two scenes with one file name (different folders) get their position as well.
     std::string stem = stem_of(scenes[s]);
     for (std::size_t t = 0; t < s; ++t) {
-      if (stem_of(scenes[t]) == stem) stem += "_" + std::to_string(s + 1);
+      if (stem_of(scenes[t]) == stem) {
+        stem += '_';
+        stem += std::to_string(s + 1);
+      }
     }
     for (const ErrorMeasure& m : kErrorMeasures) {
       PlotSpec front = front_plot(r, scenes[s], stem, m, engines);

@@ -54,8 +54,12 @@ std::vector<std::size_t> candidates(const SweepReport& r, const std::string& sce
 }
 
 std::string cell_label(const CellResult& c) {
-  return c.spec.engine + (c.spec.settings.empty() ? "" : " " + settings_label(c.spec.settings)) + " dt=" +
-         format(c.spec.dt, "%.4g");
+  std::string label = c.spec.engine;
+  if (!c.spec.settings.empty()) {
+    label += ' ';
+    label += settings_label(c.spec.settings);
+  }
+  return label + " dt=" + format(c.spec.dt, "%.4g");
 }
 
 std::string csv_field(const std::string& s) {
