@@ -156,7 +156,6 @@ double ShockPropagation::frozen_target(const SolverBodyArray& sb, const SolverCo
 
 void ShockPropagation::solve_level(ImpulseStep& step, int l) {
   SolverBodyArray& sb = step.resting;
-  StepStats& stats = step.stats();
   // Contacts that reach down to a frozen body see only the moving body's share of K. A frozen
   // body keeps its velocity through the level, so each contact's target is set once.
   level_contacts_.clear();
