@@ -227,11 +227,13 @@ Edge extreme_edge(const OrientedBox& box, int i, const Vec3& e) {
 namespace {
 
 // Inlined into its two callers: the matrices of `prepare` then stay in registers instead of being
-// stored and reloaded across a call (a stalled store-to-load forward at every query).
+// stored and reloaded across a call (a stalled store-to-load forward at every query). The best face
+// axis, found before the edge axes, is also written to `best_face_out` when given (the near-face
+// edge-edge contacts need it, without a second pass over the faces).
 [[gnu::always_inline]] inline SatResult separating_axis_test(const OrientedBox& a,
                                                              const OrientedBox& b,
                                                              const AxisTests& at, double stop_above,
-                                                             bool faces_only = false) {
+                                                             SatResult* best_face_out = nullptr) {
   const Mat3& C = at.C;
   const Mat3& absC = at.absC;
   const Vec3& t = at.t;
@@ -265,7 +267,8 @@ namespace {
     face.kind = FeatureKind::FaceB;
     face.axis_b = best_face - 3;
   }
-  if (face.separation > stop_above || faces_only) return face;
+  if (best_face_out) *best_face_out = face;
+  if (face.separation > stop_above) return face;
 
   // Edge axes L = Ai x Bj, k = 3i + j. In A's frame L = e_i x C_j, so with i1 = i+1, i2 = i+2
   // (mod 3):
@@ -346,9 +349,9 @@ constexpr double kSameCornerPerEdge = 0.01;
 // face (kEdgeNearFaceCos) but the one at the edge point's corner, in the edge point's normal: each
 // point's depth is its gap along that normal (the face depth times the cosine between the
 // normals), never more than the edge point's, the pair's penetration along it.
+// `face` is the best face axis the separating-axis test met on its way to the edge axis.
 void add_near_face_points(const OrientedBox& a, const OrientedBox& b, const AxisTests& at, const SatResult& sat,
-                          const CollisionSettings& settings, Manifold& out) {
-  const SatResult face = separating_axis_test(a, b, at, settings.margin, /*faces_only=*/true);
+                          const SatResult& face, const CollisionSettings& settings, Manifold& out) {
   const double cos_nf = std::abs(face.normal.dot(sat.normal));
   if (cos_nf <= kEdgeNearFaceCos) return;
   Manifold face_points;
@@ -369,7 +372,8 @@ void collide_box_box(const OrientedBox& a, const OrientedBox& b, const Collision
                      Manifold& out) {
   out.clear();
   const AxisTests at = prepare(a, b);
-  const SatResult sat = separating_axis_test(a, b, at, settings.margin);
+  SatResult best_face;
+  const SatResult sat = separating_axis_test(a, b, at, settings.margin, &best_face);
   if (sat.separation > settings.margin) return;
 
   switch (sat.kind) {
@@ -386,7 +390,7 @@ void collide_box_box(const OrientedBox& a, const OrientedBox& b, const Collision
                      b.axes.col(sat.axis_b), b.half[sat.axis_b], pa, pb);
       out.push_back({0.5 * (pa + pb), sat.normal, -sat.separation,
                      FeatureId::make(FeatureKind::EdgeEdge, ea.id, eb.id, 0)});
-      add_near_face_points(a, b, at, sat, settings, out);
+      add_near_face_points(a, b, at, sat, best_face, settings, out);
       break;
     }
     case FeatureKind::Plane:
