@@ -72,9 +72,9 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
 void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const int> group,
                                       const ShockPropagation* shock, int level) {
   const SolverBodies& sb = step.sb;
-  auto moves = [&](int body) {
-    return body >= 0 && !sb.get(body).fixed && (!shock || shock->levels()[body] >= level);
-  };
+  // With the levels, the level's own bodies (shock propagation's rule); without, every body
+  // that is not fixed.
+  auto moves = [&](int body) { return shock ? shock->moves(body, level) : body >= 0 && !sb.get(body).fixed; };
   // Each contact with what its passes read: which bodies move, and 1 / (n . K n) over them.
   phase_.clear();
   for (const int k : group) {

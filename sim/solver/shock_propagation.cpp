@@ -130,7 +130,6 @@ void ShockPropagation::assign_levels(const ImpulseStep& step) {
 }
 
 void ShockPropagation::group_contacts_by_level(const ImpulseStep& step) {
-  // A contact belongs to the higher of its two bodies' levels.
   auto solved = [](int l) { return l >= 0 && l != kUnsupported; };
   level_start_.assign((top_ + 2), 0);
   for (const SolverContact& c : step.contacts)

@@ -24,13 +24,15 @@ class ShockPropagation {
   // Level of each body in the last run (-1: fixed; kUnsupported: not connected to the ground).
   const std::vector<int>& levels() const { return level_; }
   static constexpr int kUnsupported = 1 << 30;
-  // The highest level of the last run (-1 when no body is supported), the contacts of level l
-  // (those whose higher body is on level l), and a contact's level.
+  // The highest level of the last run (-1 when no body is supported), and the contacts of level
+  // l (those whose higher body is on level l).
   int top_level() const { return top_; }
   std::span<const int> contacts_of_level(int l) const {
     return {by_level_.data() + level_start_[l], by_level_.data() + level_start_[l + 1]};
   }
-  int contact_level(const SolverContact& c) const { return std::max(level_of(c.a), level_of(c.b)); }
+  // Whether body moves while `level` is solved: only the level's own bodies do (lower levels are
+  // frozen; fixed bodies and the ground never move).
+  bool moves(int body, int level) const { return body >= 0 && level_of(body) == level; }
   // A contact of the level being solved, with what its passes read, set when the level begins.
   struct LevelContact {
     int index = 0;         // in step.contacts
@@ -64,8 +66,8 @@ class ShockPropagation {
   };
 
   int level_of(int body) const { return body < 0 ? -1 : level_[body]; }
-  // Whether body moves while `level` is solved (bodies of lower levels are frozen).
-  bool moves(int body, int level) const { return body >= 0 && level_of(body) == level; }
+  // A contact belongs to the higher of its two bodies' levels.
+  int contact_level(const SolverContact& c) const { return std::max(level_of(c.a), level_of(c.b)); }
   // The normal velocity a contact of `level` asks for against a frozen body (see the .cpp).
   double frozen_target(const SolverBodyArray& sb, const SolverContact& c, int level) const;
 
