@@ -137,17 +137,18 @@ TEST_CASE("a stack of 10 stands for 5 s with shock propagation, and falls withou
   CHECK(error > 1e-2);
 }
 
-TEST_CASE("a stack of 10 drifts less than 1e-6 m in 100,000 steps", "[solver][drift]") {
+TEST_CASE("a stack of 10 drifts less than 1e-8 m in 100,000 steps", "[solver][drift]") {
   // 417 s at dt 1/240 (about 6 s of CPU in a release build). Every level of shock propagation
   // converges to 1e-12 m/s, so the top box keeps no residual velocity to drift with: measured
-  // 3.9e-10 m (docs/solver.md). With levels stopped at 1e-9 m/s it drifted 9.9e-5 m.
+  // 3.9e-10 m (docs/solver.md), gated at 1e-8 m: room for rounding changes to the solver's
+  // order, far below the 9.9e-5 m it drifted with levels stopped at 1e-9 m/s.
   const Scene s = fixture("stack_10");
   World w(s);
   const Vec3 start = w.bodies().back().x;
   run(w, 100000);
   const double drift = (w.bodies().back().x - start).norm();
   INFO("top drift after 100,000 steps: " << drift << " m");
-  CHECK(drift < 1e-6);
+  CHECK(drift < 1e-8);
 }
 
 TEST_CASE("a shock-propagation level stops once converged, or once its passes stop converging", "[solver]") {
@@ -324,13 +325,11 @@ TEST_CASE("the friction-cone test decides as the rounded square root does even a
   // Every squared norm within 40 ulps of limit^2 either side (where the squares and the root could
   // disagree), over limits from 1e-160 to 1e200, and the edge cases: zero, subnormal, infinite, NaN.
   const double eps = std::numeric_limits<double>::epsilon();
-  int checked = 0;
   for (double limit : {0.0, 1e-160, 3.7e-149, 1e-12, 0.3, 1.0, 2.5, 7.1e3, 1e154, 1e200}) {
     const double sq = limit * limit;
     for (int k = -40; k <= 40; ++k) {
       const double squared = sq * (1.0 + k * eps);
       REQUIRE(norm_within(squared, limit) == (std::sqrt(squared) <= limit));
-      ++checked;
     }
     double up = sq, down = sq;
     for (int k = 0; k < 40; ++k) {
@@ -338,10 +337,8 @@ TEST_CASE("the friction-cone test decides as the rounded square root does even a
       down = std::nextafter(down, 0.0);
       REQUIRE(norm_within(up, limit) == (std::sqrt(up) <= limit));
       REQUIRE(norm_within(down, limit) == (std::sqrt(down) <= limit));
-      checked += 2;
     }
   }
-  CHECK(checked == 10 * 161);
   CHECK(norm_within(4.0, 2.0));
   CHECK_FALSE(norm_within(4.0 * (1.0 + 1e-6), 2.0));
   CHECK(norm_within(1e-321, 1e-160));  // limit^2 underflows: the root decides
