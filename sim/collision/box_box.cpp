@@ -54,10 +54,11 @@ struct AxisTests {
 //
 // AxisTests must stay in registers. The loops over axes here and in the test are unrolled
 // (#pragma GCC unroll 3) so that every index into it is a constant before the compiler's scalar
-// replacement runs, and nothing indexes it by a variable (the face's sign is kept per axis, the
-// incident cosines are recomputed from the axes). Otherwise the struct lives in memory, its
-// entries are written one by one, and the vectorised test reads two of them back as one pair: a
-// stalled store-to-load forward, some 10 ns per query (perf showed two of them).
+// replacement runs, and nothing indexes it by a variable (the best face's centre offset comes
+// from a copy per face axis, the incident cosines are recomputed from the axes). Otherwise the
+// struct lives in memory, its entries are written one by one, and the vectorised test reads two
+// of them back as one pair: a stalled store-to-load forward, some 10 ns per query (perf showed
+// two of them).
 inline AxisTests prepare(const OrientedBox& a, const OrientedBox& b) {
   AxisTests at;
 #pragma GCC unroll 3
@@ -252,35 +253,39 @@ namespace {
   // Rows and columns of |C| by scalars, each summed in the order Eigen's dot product of three
   // terms sums them (the same bits as before).
   std::array<double, 6> face_sep;
-  std::array<double, 6> face_sign;  // -sign of (cB - cA) along the axis: the normal's side
+  std::array<double, 6> face_offset;  // (cB - cA) along the axis: t_i, then d . Bj
 #pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) {
-    face_sign[i] = -sign_of(t[i]);
+    face_offset[i] = t[i];
     const double rb = absC(i, 0) * b.half[0] + (absC(i, 1) * b.half[1] + absC(i, 2) * b.half[2]);
     face_sep[i] = std::abs(t[i]) - (a.half[i] + rb);
   }
 #pragma GCC unroll 3
   for (int j = 0; j < 3; ++j) {
     const double offset_b = at.d.dot(b.axes.col(j));
-    face_sign[3 + j] = -sign_of(offset_b);
+    face_offset[3 + j] = offset_b;
     const double ra = (absC(0, j) * a.half[0] + absC(1, j) * a.half[1]) + absC(2, j) * a.half[2];
     face_sep[3 + j] = std::abs(offset_b) - (b.half[j] + ra);
   }
+  // The largest separation, the first on a tie (A's faces before B's), chosen by selects and a
+  // maximum: which face wins is data, and a branch per face mispredicted. All six are compared
+  // even past `stop_above` (the boxes are apart then, and the largest is still a lower bound).
   int best_face = 0;
-  for (int k = 1; k < 6 && !(face_sep[best_face] > stop_above); ++k)
-    if (face_sep[k] > face_sep[best_face]) best_face = k;
-  SatResult face;
-  face.separation = face_sep[best_face];
-  const double sign = face_sign[best_face];
-  if (best_face < 3) {
-    face.normal = sign * a.axes.col(best_face);
-    face.kind = FeatureKind::FaceA;
-    face.axis_a = best_face;
-  } else {
-    face.normal = sign * b.axes.col(best_face - 3);
-    face.kind = FeatureKind::FaceB;
-    face.axis_b = best_face - 3;
+  double best_sep = face_sep[0];
+#pragma GCC unroll 5
+  for (int k = 1; k < 6; ++k) {
+    best_face = face_sep[k] > best_sep ? k : best_face;
+    best_sep = std::max(best_sep, face_sep[k]);
   }
+  const bool on_a = best_face < 3;
+  const int face_axis = on_a ? best_face : best_face - 3;
+  const Mat3& axes = on_a ? a.axes : b.axes;
+  SatResult face;
+  face.separation = best_sep;
+  face.normal = -sign_of(face_offset[best_face]) * axes.col(face_axis);
+  face.kind = on_a ? FeatureKind::FaceA : FeatureKind::FaceB;
+  face.axis_a = on_a ? face_axis : 0;
+  face.axis_b = on_a ? 0 : face_axis;
   if (best_face_out) *best_face_out = face;
   if (face.separation > stop_above) return face;
 
