@@ -218,15 +218,15 @@ struct Edge {
   Vec3 mid;
   int id;
 };
-Edge extreme_edge(const OrientedBox& box, int i, const Vec3& e) {
+// The other two axes are taken in increasing order (the order of the corner bits, and of the sum).
+inline Edge extreme_edge(const OrientedBox& box, int i, const Vec3& e) {
+  const std::array<int, 2> others{i == 0 ? 1 : 0, i == 2 ? 1 : 2};
   Edge edge{box.center, 4 * i};
-  int bit = 0;
-  for (int k = 0; k < 3; ++k) {
-    if (k == i) continue;
+  for (int bit = 0; bit < 2; ++bit) {
+    const int k = others[bit];
     const double sk = sign_of(box.axes.col(k).dot(e));
     edge.mid += sk * box.half[k] * box.axes.col(k);
-    if (sk > 0.0) edge.id |= 1 << bit;
-    ++bit;
+    edge.id |= static_cast<int>(sk > 0.0) << bit;
   }
   return edge;
 }
