@@ -132,7 +132,7 @@ void clip_side(ClipPolygon*& cur, ClipPolygon*& spare, int axis, double sign, do
 
 // Face contact: the reference face of `ref` (axis `ref_axis`, outward normal m pointing toward
 // `inc`) against the face of `inc` whose outward normal is most opposite to m. `cos_inc` holds
-// I_k . R_ref_axis for inc's axes I_k (a row or column of C, already computed by the test). The
+// I_k . R_ref_axis for inc's axes I_k (a row or column of C, see face_manifold). The
 // incident face is clipped to the reference face's side planes; clip points below the reference
 // face plane are contacts, depth = h_ref - m . p, placed midway between p and its projection
 // p + depth m.
