@@ -34,6 +34,9 @@ constexpr double kParallelEdgeSin = 1e-6;
 constexpr double kFaceBiasRelative = 0.05;
 constexpr double kFaceBiasAbsolute = 1e-6;  // times the largest half extent of the two boxes
 
+// The axis after axis i, cyclically: (i + 1) % 3 without the division's multiply and shifts.
+constexpr std::array<int, 3> kNextAxis{1, 2, 0};
+
 inline double sign_of(double x) { return x < 0.0 ? -1.0 : 1.0; }
 
 // Whether num / sqrt(len2) > bar (len2 > 0), without the root and without a branch.
@@ -144,19 +147,20 @@ void face_contacts(const OrientedBox& ref, const OrientedBox& inc, const Vec3& c
 
   // Incident face: the axis l of inc most (anti)parallel to m, m . I_k = sgn cos_inc[k]; its
   // outward normal s I_l with s = -sign(m . I_l), the face most opposite to m.
-  int l = 0;
-  for (int k = 1; k < 3; ++k)
-    if (std::abs(cos_inc[k]) > std::abs(cos_inc[l])) l = k;
+  // The first on a tie, chosen by selects (which axis wins is data).
+  const Vec3 abs_cos = cos_inc.cwiseAbs();
+  int l = abs_cos[1] > abs_cos[0] ? 1 : 0;
+  l = abs_cos[2] > std::max(abs_cos[0], abs_cos[1]) ? 2 : l;
   const double s = -sign_of(sgn * cos_inc[l]);
   const int inc_face = 2 * l + (s < 0.0 ? 1 : 0);
-  const int p = (l + 1) % 3;
-  const int q = (l + 2) % 3;
+  const int p = kNextAxis[l];
+  const int q = kNextAxis[p];
 
   // The face frame: side axes u (x) and w (y) of ref, outward normal m (z), origin at ref's
   // centre. The incident face's centre and half edges are mapped from world coordinates (the
   // same numbers whichever box is the reference).
-  const int ju = (ref_axis + 1) % 3;
-  const int jw = (ref_axis + 2) % 3;
+  const int ju = kNextAxis[ref_axis];
+  const int jw = kNextAxis[ju];
   Mat3 frame;  // rows: u, w, m
   frame.row(0) = ref.axes.col(ju).transpose();
   frame.row(1) = ref.axes.col(jw).transpose();
@@ -184,12 +188,13 @@ void face_contacts(const OrientedBox& ref, const OrientedBox& inc, const Vec3& c
   const double h_ref = ref.half[ref_axis];
   const Vec3 normal = ref_is_a ? Vec3(-m) : m;  // from B toward A
   const FeatureKind kind = ref_is_a ? FeatureKind::FaceA : FeatureKind::FaceB;
+  const FeatureId faces = ref_is_a ? FeatureId::make(kind, ref_face, inc_face, 0)
+                                   : FeatureId::make(kind, inc_face, ref_face, 0);
   for (int k = 0; k < poly->n; ++k) {
     const ClipPoint& cp = poly->pts[k];
     const double depth = h_ref - cp.p.z();
     if (depth < -settings.margin) continue;
-    const FeatureId id = ref_is_a ? FeatureId::make(kind, ref_face, inc_face, cp.sub)
-                                  : FeatureId::make(kind, inc_face, ref_face, cp.sub);
+    const FeatureId id = faces.with_sub(cp.sub);
     // Midway between the point (height z) and its projection on the face (height h_ref).
     const Vec3 local(cp.p.x(), cp.p.y(), cp.p.z() + 0.5 * depth);
     const Vec3 position = ref.center + frame.transpose() * local;

@@ -37,6 +37,8 @@ struct FeatureId {
     return {static_cast<std::uint32_t>(kind) << 24 | static_cast<std::uint32_t>(on_a & 0xff) << 16 |
             static_cast<std::uint32_t>(on_b & 0xff) << 8 | static_cast<std::uint32_t>(sub & 0xff)};
   }
+  // This id with its sub-feature (0 here) set to `sub`.
+  constexpr FeatureId with_sub(int sub) const { return {value | static_cast<std::uint32_t>(sub & 0xff)}; }
   constexpr FeatureKind kind() const { return static_cast<FeatureKind>(value >> 24); }
   constexpr int on_a() const { return static_cast<int>(value >> 16 & 0xff); }
   constexpr int on_b() const { return static_cast<int>(value >> 8 & 0xff); }
