@@ -92,17 +92,21 @@ struct ClipPolygon {
 // Sutherland-Hodgman: keeps into `out` the part of `in` whose signed distances `dist` beyond
 // side plane `plane` are <= 0; new edges lie on that plane.
 void clip(const ClipPolygon& in, const std::array<double, 8>& dist, int plane, ClipPolygon& out) {
-  out.n = 0;
-  for (int k = 0; k < in.n; ++k) {
-    const int k_next = k + 1 < in.n ? k + 1 : 0;  // no integer division
+  // Counts in locals: written through `out` they would be stored and reloaded at every point
+  // (the compiler cannot tell that the points written do not alias them).
+  const int n_in = in.n;
+  int n = 0;
+  for (int k = 0; k < n_in; ++k) {
+    const int k_next = k + 1 < n_in ? k + 1 : 0;  // no integer division
     const ClipPoint& cur = in.pts[k];
     const double dc = dist[k];
     const double dn = dist[k_next];
     if (dc <= 0.0) {
       // The edge leaving cur keeps its tag, unless cur lies on the plane and the polygon leaves
       // along it, or exits through it below.
-      out.pts[out.n++] = cur;
-      if (dc == 0.0 && dn > 0.0) out.pts[out.n - 1].edge_tag = 4 + plane;
+      out.pts[n] = cur;
+      if (dc == 0.0 && dn > 0.0) out.pts[n].edge_tag = 4 + plane;
+      ++n;
     }
     // A crossing strictly between the two points; a point lying on the plane is itself kept
     // (once) and makes no second, identical crossing.
@@ -112,9 +116,10 @@ void clip(const ClipPolygon& in, const std::array<double, 8>& dist, int plane, C
       const int sub = cur.edge_tag < 4 ? 4 + 4 * cur.edge_tag + plane
                                        : 20 + 4 * (cur.edge_tag - 4) + plane;
       // Exiting, the polygon continues along the plane; entering, it follows cur's edge.
-      out.pts[out.n++] = {x, sub, dc <= 0.0 ? 4 + plane : cur.edge_tag};
+      out.pts[n++] = {x, sub, dc <= 0.0 ? 4 + plane : cur.edge_tag};
     }
   }
+  out.n = n;
 }
 
 // Clips `*cur` by the side plane sign * x[axis] <= h (in the reference frame each side plane is a
