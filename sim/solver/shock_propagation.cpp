@@ -57,8 +57,18 @@ struct PassContext {
   const std::size_t common = std::min(first.size(), second.size());
   double first_sq = 0.0, second_sq = 0.0;
   for (std::size_t k = 0; k < common; ++k) {
-    first_sq = std::max(first_sq, solve_contact(p, first[k]));
-    second_sq = std::max(second_sq, solve_contact(p, second[k]));
+    const ShockPropagation::LevelContact& l1 = first[k];
+    const ShockPropagation::LevelContact& l2 = second[k];
+    SolverContact& c1 = p.contacts[l1.index];
+    SolverContact& c2 = p.contacts[l2.index];
+    const Vec3 u1 = p.sb.relative_velocity(c1);
+    const Vec3 u2 = p.sb.relative_velocity(c2);
+    const Vec3 j1 = resting_impulse(c1, u1, l1.target, p.friction, p.counters);
+    const Vec3 j2 = resting_impulse(c2, u2, l2.target, p.friction, p.counters);
+    p.sb.apply(c1, j1, l1.a_moves, l1.b_moves);
+    p.sb.apply(c2, j2, l2.a_moves, l2.b_moves);
+    first_sq = std::max(first_sq, (c1.K * j1).squaredNorm());
+    second_sq = std::max(second_sq, (c2.K * j2).squaredNorm());
   }
   for (std::size_t k = common; k < first.size(); ++k) first_sq = std::max(first_sq, solve_contact(p, first[k]));
   for (std::size_t k = common; k < second.size(); ++k) second_sq = std::max(second_sq, solve_contact(p, second[k]));
