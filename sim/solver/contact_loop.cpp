@@ -25,7 +25,7 @@ void contact_loop(ImpulseStep& step) {
       residual = std::max(residual, allow_gap(c, 0.0, dt) - c.n.dot(u));
       const double target = allow_gap(c, c.start_un < 0.0 ? -e * c.start_un : 0.0, dt);
       const Vec3 j = resting_impulse(c, u, target, step.friction(), step.counters());
-      sb.apply(c, j);
+      if (!is_exact_zero(j)) sb.apply(c, j);  // a zero impulse would leave every velocity as it is
     }
     step.stats().contact_residual[pass] = residual;
     step.stats().contact_passes_used = pass + 1;

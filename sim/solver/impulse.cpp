@@ -25,6 +25,11 @@ void set_collision_matrix(SolverContact& c, bool a_moves, bool b_moves) {
   c.K = (a_moves ? c.Ka : Mat3::Zero()) + (b_moves ? c.Kb : Mat3::Zero());
   // K is symmetric positive definite whenever one moving body has finite mass.
   c.Kinv = c.K.inverse();
+  // Transposed: n . (K^-1 x) = (K^-T n) . x summed over the same products. The computed inverse is
+  // not exactly symmetric, and where its normal-tangent coupling is rounding noise the two
+  // orientations differ in sign.
+  c.Kinv_n = c.Kinv.transpose() * c.n;
+  c.Kinv_n_size = c.Kinv.cwiseAbs().transpose() * c.n.cwiseAbs();
 }
 
 Vec3 newton_coulomb_impulse(const SolverContact& c, const Vec3& u, double e, bool friction,
