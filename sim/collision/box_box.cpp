@@ -46,18 +46,27 @@ inline bool exceeds(double num, double len2, double bar) {
 // (k = 6 + 3i + j for Ai x Bj), computed in A's frame.
 struct AxisTests {
   Mat3 C;
-  Mat3 absC;
   Vec3 t;  // cB - cA in A's frame
   Vec3 d;  // cB - cA in world
 };
 
 // Scalar dot products: Eigen's packet product of two 3x3 matrices costs more at this size.
+//
+// AxisTests must stay in registers. The loops over axes here and in the test are unrolled
+// (#pragma GCC unroll 3) so that every index into it is a constant before the compiler's scalar
+// replacement runs, and nothing indexes it by a variable (the best face's centre offset comes
+// from a copy per face axis, the incident cosines are recomputed from the axes). Otherwise the
+// struct lives in memory, its entries are written one by one, and the vectorised test reads two
+// of them back as one pair: a stalled store-to-load forward, some 10 ns per query (perf showed
+// two of them).
 inline AxisTests prepare(const OrientedBox& a, const OrientedBox& b) {
   AxisTests at;
+#pragma GCC unroll 3
   for (int j = 0; j < 3; ++j)
+#pragma GCC unroll 3
     for (int i = 0; i < 3; ++i) at.C(i, j) = a.axes.col(i).dot(b.axes.col(j));
-  at.absC = at.C.cwiseAbs();
   at.d = b.center - a.center;
+#pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) at.t[i] = a.axes.col(i).dot(at.d);
   return at;
 }
@@ -123,7 +132,7 @@ void clip_side(ClipPolygon*& cur, ClipPolygon*& spare, int axis, double sign, do
 
 // Face contact: the reference face of `ref` (axis `ref_axis`, outward normal m pointing toward
 // `inc`) against the face of `inc` whose outward normal is most opposite to m. `cos_inc` holds
-// I_k . R_ref_axis for inc's axes I_k (a row or column of C, already computed by the test). The
+// I_k . R_ref_axis for inc's axes I_k (a row or column of C, see face_manifold). The
 // incident face is clipped to the reference face's side planes; clip points below the reference
 // face plane are contacts, depth = h_ref - m . p, placed midway between p and its projection
 // p + depth m.
@@ -209,15 +218,15 @@ struct Edge {
   Vec3 mid;
   int id;
 };
-Edge extreme_edge(const OrientedBox& box, int i, const Vec3& e) {
+// The other two axes are taken in increasing order (the order of the corner bits, and of the sum).
+inline Edge extreme_edge(const OrientedBox& box, int i, const Vec3& e) {
+  const std::array<int, 2> others{i == 0 ? 1 : 0, i == 2 ? 1 : 2};
   Edge edge{box.center, 4 * i};
-  int bit = 0;
-  for (int k = 0; k < 3; ++k) {
-    if (k == i) continue;
+  for (int bit = 0; bit < 2; ++bit) {
+    const int k = others[bit];
     const double sk = sign_of(box.axes.col(k).dot(e));
     edge.mid += sk * box.half[k] * box.axes.col(k);
-    if (sk > 0.0) edge.id |= 1 << bit;
-    ++bit;
+    edge.id |= static_cast<int>(sk > 0.0) << bit;
   }
   return edge;
 }
@@ -235,38 +244,48 @@ namespace {
                                                              const AxisTests& at, double stop_above,
                                                              SatResult* best_face_out = nullptr) {
   const Mat3& C = at.C;
-  const Mat3& absC = at.absC;
+  // |C_ij| where it is used: a stored |C| was again written in pairs and read at other offsets.
+  const auto absC = [&C](int i, int j) { return std::abs(C(i, j)); };
   const Vec3& t = at.t;
 
   // Face axes, k = 0..2 for A's and 3..5 for B's.
   //   A's: s = |t_i| - (a_i + sum_j b_j |C_ij|);  B's: s = |d . Bj| - (b_j + sum_i a_i |C_ij|).
-  // A row of C by scalars, summed as Eigen sums three terms (x0 + (x1 + x2)): its packets for a
-  // strided row of three cost more.
+  // Rows and columns of |C| by scalars, each summed in the order Eigen's dot product of three
+  // terms sums them (the same bits as before).
   std::array<double, 6> face_sep;
-  std::array<double, 3> offset_b;  // (cB - cA) . Bj; along A's axes it is t
+  std::array<double, 6> face_offset;  // (cB - cA) along the axis: t_i, then d . Bj
+#pragma GCC unroll 3
   for (int i = 0; i < 3; ++i) {
+    face_offset[i] = t[i];
     const double rb = absC(i, 0) * b.half[0] + (absC(i, 1) * b.half[1] + absC(i, 2) * b.half[2]);
     face_sep[i] = std::abs(t[i]) - (a.half[i] + rb);
   }
+#pragma GCC unroll 3
   for (int j = 0; j < 3; ++j) {
-    offset_b[j] = at.d.dot(b.axes.col(j));
-    const double ra = absC.col(j).dot(a.half);
-    face_sep[3 + j] = std::abs(offset_b[j]) - (b.half[j] + ra);
+    const double offset_b = at.d.dot(b.axes.col(j));
+    face_offset[3 + j] = offset_b;
+    const double ra = (absC(0, j) * a.half[0] + absC(1, j) * a.half[1]) + absC(2, j) * a.half[2];
+    face_sep[3 + j] = std::abs(offset_b) - (b.half[j] + ra);
   }
+  // The largest separation, the first on a tie (A's faces before B's), chosen by selects and a
+  // maximum: which face wins is data, and a branch per face mispredicted. All six are compared
+  // even past `stop_above` (the boxes are apart then, and the largest is still a lower bound).
   int best_face = 0;
-  for (int k = 1; k < 6 && !(face_sep[best_face] > stop_above); ++k)
-    if (face_sep[k] > face_sep[best_face]) best_face = k;
-  SatResult face;
-  face.separation = face_sep[best_face];
-  if (best_face < 3) {
-    face.normal = -sign_of(t[best_face]) * a.axes.col(best_face);
-    face.kind = FeatureKind::FaceA;
-    face.axis_a = best_face;
-  } else {
-    face.normal = -sign_of(offset_b[best_face - 3]) * b.axes.col(best_face - 3);
-    face.kind = FeatureKind::FaceB;
-    face.axis_b = best_face - 3;
+  double best_sep = face_sep[0];
+#pragma GCC unroll 5
+  for (int k = 1; k < 6; ++k) {
+    best_face = face_sep[k] > best_sep ? k : best_face;
+    best_sep = std::max(best_sep, face_sep[k]);
   }
+  const bool on_a = best_face < 3;
+  const int face_axis = on_a ? best_face : best_face - 3;
+  const Mat3& axes = on_a ? a.axes : b.axes;
+  SatResult face;
+  face.separation = best_sep;
+  face.normal = -sign_of(face_offset[best_face]) * axes.col(face_axis);
+  face.kind = on_a ? FeatureKind::FaceA : FeatureKind::FaceB;
+  face.axis_a = on_a ? face_axis : 0;
+  face.axis_b = on_a ? 0 : face_axis;
   if (best_face_out) *best_face_out = face;
   if (face.separation > stop_above) return face;
 
@@ -329,14 +348,20 @@ SatResult box_box_sat(const OrientedBox& a, const OrientedBox& b, double stop_ab
 }
 
 namespace {
-// The clipped points of the reference face `sat` names (FaceA or FaceB).
-void face_manifold(const OrientedBox& a, const OrientedBox& b, const AxisTests& at, const SatResult& sat,
-                   const CollisionSettings& settings, Manifold& out) {
-  if (sat.kind == FeatureKind::FaceA)
-    face_contacts(a, b, at.C.row(sat.axis_a).transpose(), sat.axis_a, -sat.normal, /*ref_is_a=*/true, settings,
-                  out);
-  else
-    face_contacts(b, a, at.C.col(sat.axis_b), sat.axis_b, sat.normal, /*ref_is_a=*/false, settings, out);
+// The clipped points of the reference face `sat` names (FaceA or FaceB). The incident box's
+// cosines I_k . R to the reference axis R, a row or a column of C, are recomputed from the axes by
+// the same dot products (the same bits): read from C by a variable index they would keep C in
+// memory (see prepare).
+void face_manifold(const OrientedBox& a, const OrientedBox& b, const SatResult& sat, const CollisionSettings& settings,
+                   Manifold& out) {
+  Vec3 cos_inc;
+  if (sat.kind == FeatureKind::FaceA) {
+    for (int k = 0; k < 3; ++k) cos_inc[k] = a.axes.col(sat.axis_a).dot(b.axes.col(k));
+    face_contacts(a, b, cos_inc, sat.axis_a, -sat.normal, /*ref_is_a=*/true, settings, out);
+  } else {
+    for (int k = 0; k < 3; ++k) cos_inc[k] = a.axes.col(k).dot(b.axes.col(sat.axis_b));
+    face_contacts(b, a, cos_inc, sat.axis_b, sat.normal, /*ref_is_a=*/false, settings, out);
+  }
 }
 
 // A clipped face point this close to the edge-edge point, as a fraction of the smallest edge of
@@ -350,12 +375,12 @@ constexpr double kSameCornerPerEdge = 0.01;
 // point's depth is its gap along that normal (the face depth times the cosine between the
 // normals), never more than the edge point's, the pair's penetration along it.
 // `face` is the best face axis the separating-axis test met on its way to the edge axis.
-void add_near_face_points(const OrientedBox& a, const OrientedBox& b, const AxisTests& at, const SatResult& sat,
+void add_near_face_points(const OrientedBox& a, const OrientedBox& b, const SatResult& sat,
                           const SatResult& face, const CollisionSettings& settings, Manifold& out) {
   const double cos_nf = std::abs(face.normal.dot(sat.normal));
   if (cos_nf <= kEdgeNearFaceCos) return;
   Manifold face_points;
-  face_manifold(a, b, at, face, settings, face_points);
+  face_manifold(a, b, face, settings, face_points);
   const Contact edge = out[0];
   const double same_corner = kSameCornerPerEdge * 2.0 * std::min(a.half.minCoeff(), b.half.minCoeff());
   for (int i = 0; i < face_points.size() && out.size() < kMaxManifoldPoints; ++i) {
@@ -379,7 +404,7 @@ void collide_box_box(const OrientedBox& a, const OrientedBox& b, const Collision
   switch (sat.kind) {
     case FeatureKind::FaceA:
     case FeatureKind::FaceB:
-      face_manifold(a, b, at, sat, settings, out);
+      face_manifold(a, b, sat, settings, out);
       break;
     case FeatureKind::EdgeEdge: {
       // A's edge along Ai extreme toward B (along -n), B's edge along Bj extreme toward A (+n).
@@ -390,7 +415,7 @@ void collide_box_box(const OrientedBox& a, const OrientedBox& b, const Collision
                      b.axes.col(sat.axis_b), b.half[sat.axis_b], pa, pb);
       out.push_back({0.5 * (pa + pb), sat.normal, -sat.separation,
                      FeatureId::make(FeatureKind::EdgeEdge, ea.id, eb.id, 0)});
-      add_near_face_points(a, b, at, sat, best_face, settings, out);
+      add_near_face_points(a, b, sat, best_face, settings, out);
       break;
     }
     case FeatureKind::Plane:

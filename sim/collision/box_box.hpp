@@ -21,8 +21,9 @@ struct SatResult {
 
 // Separating-axis test over the 15 axes: A's 3 face normals, B's 3, and the 9 edge cross products
 // (near-parallel edge pairs skipped). On near-ties faces win over edges (see box_box.cpp).
-// The test stops at the first axis that separates by more than `stop_above`; the separation
-// returned is then a lower bound of the largest one (the default tests every axis).
+// The test stops once an axis separates by more than `stop_above`: after the face axes (the
+// largest of the six) or at the first such edge axis; the separation returned is then a lower
+// bound of the largest one (the default tests every axis).
 SatResult box_box_sat(const OrientedBox& a, const OrientedBox& b,
                       double stop_above = std::numeric_limits<double>::infinity());
 

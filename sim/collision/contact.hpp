@@ -61,6 +61,11 @@ class Manifold {
   int size() const { return count_; }
   bool empty() const { return count_ == 0; }
   void clear() { count_ = 0; }
+  // Keeps the first n points (n <= size()).
+  void truncate(int n) {
+    assert(n >= 0 && n <= count_);
+    count_ = n;
+  }
   void push_back(const Contact& c) {
     assert(count_ < kMaxManifoldPoints);
     points_[(count_++)] = c;
