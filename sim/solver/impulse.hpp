@@ -164,8 +164,11 @@ inline bool stays_unloaded(const SolverContact& c, const Vec3& u, double un, dou
   if (c.slide_dir.isZero()) {
     // The point was not sliding when the phase began: its sliding direction would be noise, so
     // keep the sticking impulse's own direction and clamp it radially onto the cone.
+    // A point pulled apart (J_n <= 0) keeps no impulse: its scale is +0, known without the root
+    // and the division (friction * 0 / |j_t| is +0 too), which would wait in its chain.
     const double jn_clamped = std::max(0.0, jn);
-    const double scale = jt.norm() > 0.0 ? std::min(1.0, c.friction * jn_clamped / jt.norm()) : 0.0;
+    const double scale =
+        jn_clamped > 0.0 && jt.norm() > 0.0 ? std::min(1.0, c.friction * jn_clamped / jt.norm()) : 0.0;
     J = jn_clamped * n + scale * jt;
     c.accumulated = J;
     return J - J_old;
