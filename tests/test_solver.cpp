@@ -3,12 +3,14 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <string>
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/metrics.hpp"
 #include "boxpile/sim/solver/impulse.hpp"
 #include "boxpile/sim/time_steps.hpp"
+#include "boxpile/sim/body.hpp"
 #include "boxpile/sim/world.hpp"
 
 using namespace boxpile;
@@ -178,6 +180,69 @@ TEST_CASE("a shock-propagation level stops once converged, or once its passes st
     INFO("passes per level: " << static_cast<double>(passes) / static_cast<double>(levels));
     CHECK(passes < 30 * levels);
   }
+}
+
+TEST_CASE("a point told unloaded is one the full resting update would leave without impulse", "[solver]") {
+  // stays_unloaded decides from K^-T n . (target n - u) what the update computes as
+  // n . (K^-1 (target n - u)): for every point it decides, the update's own normal part must pull
+  // (j_n < 0, so the update ends on the cone's apex), and a point that slid must already meet its
+  // target. Half the samples are the Jenga tower's case: two equal blocks lying square on each
+  // other (turned by rounding-sized angles), the point midway between their centres along the
+  // normal, so that their shares of K's normal-tangent coupling cancel and what is left of it is
+  // rounding noise, and a velocity almost all tangential. There K^-1 n and K^-T n differ in sign.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  auto random_vec = [&] { return Vec3(unit(rng), unit(rng), unit(rng)); };
+  auto body = [&](const Vec3& centre, const Vec3& half, double mass, double angle) {
+    const Quat turn(Eigen::AngleAxisd(angle * unit(rng), random_vec().normalized()));
+    return make_body("b", {BoxShape{half, Vec3::Zero(), Quat::Identity()}}, mass, Pose{centre, turn}, Vec3::Zero(),
+                     Vec3::Zero(), Material{}, false);
+  };
+  int decided = 0, clear_pulls = 0, clear_pulls_decided = 0;
+  for (int k = 0; k < 40000; ++k) {
+    const bool square = k % 2 == 0;
+    SolverContact c;
+    c.n = square ? Vec3::UnitZ() : Vec3(random_vec().normalized());
+    const Vec3 point = random_vec();
+    const Vec3 r = Vec3(1.5, 0.5, 0.3).cwiseProduct(random_vec());
+    const Vec3 half = Vec3(1.5, 0.5, 0.3) + 0.2 * random_vec();
+    const double mass = 1.0 + std::abs(unit(rng));
+    const double angle = square ? 1e-15 : 3.0;
+    const RigidBody a = body(point - r, half, mass, angle);
+    const RigidBody b = square ? body(point - (r - 2.0 * r.z() * Vec3::UnitZ()), half, mass, angle)
+                               : body(point - Vec3(random_vec()), half + 0.2 * random_vec(), mass + 1.0, angle);
+    c.ra = point - a.x;
+    c.rb = point - b.x;
+    c.Ka = collision_matrix_share(a, c.ra);
+    c.Kb = collision_matrix_share(b, c.rb);
+    set_collision_matrix(c, true, square || k % 3 != 0);  // some against a frozen body
+    const Vec3 v = random_vec();
+    const Vec3 tangential = v - c.n.dot(v) * c.n;
+    const Vec3 u = square ? Vec3(tangential + 1e-14 * unit(rng) * c.n) : random_vec();
+    const double target = square ? 1e-14 * unit(rng) : 0.5 * unit(rng);
+    if (k % 4 == 1) c.slide_dir = tangential.normalized();
+    const double un = c.n.dot(u);
+    // The update's normal part, computed as resting_impulse computes it for J_old = 0.
+    const Vec3 J = Vec3::Zero() + c.Kinv * (target * c.n - u);
+    const double jn = J.dot(c.n);
+    const bool slid_short = !c.slide_dir.isZero() && un < target;
+    const bool unloaded = stays_unloaded(c, u, un, target);
+    if (unloaded) {
+      ++decided;
+      INFO("sample " << k << ": j_n " << jn << ", u_n " << un << ", target " << target);
+      REQUIRE(jn < 0.0);
+      REQUIRE_FALSE(slid_short);
+    }
+    if (jn < -1e-9 * (target * c.n - u).norm() * c.Kinv.norm() && !slid_short) {
+      ++clear_pulls;
+      if (unloaded) ++clear_pulls_decided;
+    }
+  }
+  // It decides every clear pull, 1e-9 of the terms' size below zero (a test that never decides
+  // would pass the loop above).
+  INFO(decided << " decided; " << clear_pulls_decided << " of " << clear_pulls << " clear pulls");
+  CHECK(clear_pulls > 5000);
+  CHECK(clear_pulls_decided == clear_pulls);
 }
 
 TEST_CASE("a heavy box on a light one and a pyramid stay up", "[solver]") {

@@ -44,8 +44,9 @@ struct SolverContact {
   // propagation the share of the bodies that still move. Set once per phase, not per impulse.
   Mat3 K = Mat3::Zero();
   Mat3 Kinv = Mat3::Zero();
-  // K^-1 n and |K^-1| |n|, set with K: the normal part of a sticking impulse is Kinv_n . (target n - u),
-  // and Kinv_n_size . |target n - u| bounds the terms it sums (resting_impulse).
+  // K^-T n and |K^-1|^T |n|, set with K: the normal part of a sticking impulse is
+  // Kinv_n . (target n - u), and Kinv_n_size . |target n - u| bounds the terms it sums
+  // (stays_unloaded).
   Vec3 Kinv_n = Vec3::Zero();
   Vec3 Kinv_n_size = Vec3::Zero();
   bool active = true;        // the collision loop drops contacts that separate
@@ -110,15 +111,16 @@ inline bool norm_within(double squared, double limit) {
   return std::sqrt(squared) <= limit;
 }
 
+// Whether every component is zero (+0 or -0), exactly: Eigen's isZero() allows 1e-12.
+inline bool is_exact_zero(const Vec3& v) { return v.x() == 0.0 && v.y() == 0.0 && v.z() == 0.0; }
+
 // Whether a point that carries no impulse yet would still carry none after a resting update, told
 // from the normal part of its sticking impulse alone (one dot product instead of the update): a
 // sticking impulse that would pull (j_n < 0) ends on the cone's apex, and so does a sliding one
-// while the point already meets its target. Half the contact loop's updates in the Jenga tower
-// are such points: separating, or kept apart by their neighbours. The normal part is estimated
-// with a different rounding than the update computes it, so only a clear pull is decided here
-// (below kUnloadedMargin of the terms' size); the update decides the rest itself.
-inline bool is_exact_zero(const Vec3& v) { return v.x() == 0.0 && v.y() == 0.0 && v.z() == 0.0; }
-
+// while the point already meets its target. A third of the contact loop's updates in the Jenga
+// tower are such points: separating, or kept apart by their neighbours. The normal part is
+// estimated with a different rounding than the update computes it, so only a clear pull is
+// decided here (below kUnloadedMargin of the terms' size); the update decides the rest itself.
 inline bool stays_unloaded(const SolverContact& c, const Vec3& u, double un, double target_un) {
   // Far above the rounding of either form (a few ulps, 1e-15 relative).
   constexpr double kUnloadedMargin = 1e-12;
