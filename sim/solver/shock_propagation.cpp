@@ -109,6 +109,8 @@ void ShockPropagation::reserve(const StepStorage& storage) {
   group_of_.reserve(storage.bodies);
   group_start_.reserve(storage.bodies + 1);
   group_fill_.reserve(storage.bodies);
+  group_roots_.reserve(storage.bodies);
+  contact_group_.reserve(storage.contacts());
   active_.reserve(storage.bodies);
 }
 
@@ -299,24 +301,27 @@ void ShockPropagation::group_level_contacts(const ImpulseStep& step) {
     const int ra = find(c.a), rb = find(c.b);
     if (ra != rb) root_[std::max(ra, rb)] = std::min(ra, rb);
   }
-  // Counting sort by group: each root numbered at its first contact.
+  // Counting sort by group: each root numbered at its first contact, each contact's group noted
+  // (one find per contact).
   group_start_.assign(1, 0);
+  group_roots_.clear();
+  contact_group_.clear();
   for (const LevelContact& lc : level_contacts_) {
     const int root = find(mover(lc, step.contacts[lc.index]));
     if (group_of_[root] < 0) {
-      group_of_[root] = static_cast<int>(group_start_.size()) - 1;
+      group_of_[root] = static_cast<int>(group_roots_.size());
+      group_roots_.push_back(root);
       group_start_.push_back(0);
     }
+    contact_group_.push_back(group_of_[root]);
     ++group_start_[group_of_[root] + 1];
   }
   for (std::size_t g = 1; g < group_start_.size(); ++g) group_start_[g] += group_start_[g - 1];
   group_contacts_.resize(level_contacts_.size());
   group_fill_.assign(group_start_.begin(), group_start_.end() - 1);
-  for (const LevelContact& lc : level_contacts_) {
-    const int root = find(mover(lc, step.contacts[lc.index]));
-    group_contacts_[static_cast<std::size_t>(group_fill_[group_of_[root]]++)] = lc;
-  }
-  for (const LevelContact& lc : level_contacts_) group_of_[find(mover(lc, step.contacts[lc.index]))] = -1;
+  for (std::size_t k = 0; k < level_contacts_.size(); ++k)
+    group_contacts_[static_cast<std::size_t>(group_fill_[contact_group_[k]]++)] = level_contacts_[k];
+  for (const int root : group_roots_) group_of_[root] = -1;
 }
 
 }  // namespace boxpile

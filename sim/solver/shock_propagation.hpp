@@ -82,6 +82,8 @@ class ShockPropagation {
   std::vector<int> root_;                     // per body, union-find parent within the level
   std::vector<int> group_of_;                 // per root body, its group (-1 between levels)
   std::vector<int> group_start_, group_fill_;
+  std::vector<int> group_roots_;    // per group of the level, its root body
+  std::vector<int> contact_group_;  // per contact of the level (level_contacts_), its group
   std::vector<int> active_;  // the groups of the level not converged yet
 };
 
