@@ -54,6 +54,10 @@ class ShockPropagation {
   void group_level_contacts(const ImpulseStep& step);
   // The level's passes over its groups, each group until it converges, the level until it stalls.
   void solve_groups(ImpulseStep& step);
+  // The level's groups of one body on frozen supports solved directly where every touching point
+  // sticks; the rest become the passes' active groups. Returns the largest residual of a direct
+  // solve (m/s), or -1 when none was solved.
+  double solve_one_body_groups(ImpulseStep& step);
   // The contacts of group g of the level being solved.
   std::span<const LevelContact> group(int g) const {
     return {group_contacts_.data() + group_start_[g], group_contacts_.data() + group_start_[g + 1]};
