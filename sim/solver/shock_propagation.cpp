@@ -6,7 +6,7 @@
 #include <span>
 #include <utility>
 
-#include "boxpile/sim/solver/one_body_solve.hpp"
+#include "boxpile/sim/solver/sticking_solve.hpp"
 
 namespace boxpile {
 
@@ -230,7 +230,7 @@ void ShockPropagation::solve_groups(ImpulseStep& step) {
   StepStats& stats = step.stats();
   const int passes = step.settings().shock_passes;
   const PassContext context(step);
-  const double direct_residual = solve_one_body_groups(step);
+  const double direct_residual = solve_sticking_groups(step);
   Progress level;
   bool stalled = false;
   int pass = 0;
@@ -276,17 +276,17 @@ void ShockPropagation::solve_groups(ImpulseStep& step) {
   if (stalled) ++stats.shock_stalled_levels;
 }
 
-double ShockPropagation::solve_one_body_groups(ImpulseStep& step) {
+double ShockPropagation::solve_sticking_groups(ImpulseStep& step) {
   // Each group that is one body on frozen supports, solved directly when every touching point can
-  // stick (one_body_solve.hpp); the others stay active for the passes.
+  // stick (sticking_solve.hpp); the others stay active for the passes.
   const int groups = static_cast<int>(group_start_.size()) - 1;
   double worst = -1.0;
   active_.clear();
   for (int g = 0; g < groups; ++g) {
     double residual = 0.0;
-    const OneBodyOutcome outcome =
-        solve_one_body_group(step.resting, step.contacts, group(g), step.friction(), step.counters(), residual);
-    if (outcome == OneBodyOutcome::solved)
+    const StickingOutcome outcome =
+        solve_sticking_group(step.resting, step.contacts, group(g), step.friction(), step.counters(), residual);
+    if (outcome == StickingOutcome::solved)
       worst = std::max(worst, residual);
     else
       active_.push_back(g);

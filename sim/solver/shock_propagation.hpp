@@ -57,7 +57,7 @@ class ShockPropagation {
   // The level's groups of one body on frozen supports solved directly where every touching point
   // sticks; the rest become the passes' active groups. Returns the largest residual of a direct
   // solve (m/s), or -1 when none was solved.
-  double solve_one_body_groups(ImpulseStep& step);
+  double solve_sticking_groups(ImpulseStep& step);
   // The contacts of group g of the level being solved.
   std::span<const LevelContact> group(int g) const {
     return {group_contacts_.data() + group_start_[g], group_contacts_.data() + group_start_[g + 1]};
