@@ -33,15 +33,16 @@ constexpr int kStickingMinPoints = 3;
 // One point of a body as the solve sees it: its place in the group, the body's W = [r]x^T there,
 // the sign of the impulse on the body (+1 when it is A), the velocity the point must reach, and
 // whether it touches a body that does not move (depth >= 0: it sticks), has a gap to one (it
-// carries no impulse), or links two moving bodies (it carries no impulse either).
+// carries no impulse), or links two moving bodies (it carries no impulse either). Left
+// uninitialised until filled: a group's array of them is set up for every group of every level.
 struct Point {
-  int k = 0;
-  SolverContact* c = nullptr;
-  const Mat3* W = nullptr;
-  double side = 1.0;
-  Vec3 wanted = Vec3::Zero();
-  bool touching = true;
-  bool link = false;
+  int k;
+  SolverContact* c;
+  const Mat3* W;
+  double side;
+  Vec3 wanted;
+  bool touching;
+  bool link;
 };
 
 // A moving body's solve: its new momenta and the velocities they imply.
@@ -107,6 +108,7 @@ int collect_points(const SolverBodyArray& sb, std::vector<SolverContact>& contac
     p.W = as_a ? &c.Wa : &c.Wb;
     p.link = lc.a_moves && lc.b_moves;
     p.touching = !p.link && c.depth >= 0.0;
+    p.wanted = Vec3::Zero();
     if (p.link) continue;
     // u = v_A - v_B = target n: the moving point's velocity is the frozen one's plus side target n.
     const Vec3 frozen = as_a ? sb.point_velocity(c.b, c.Wb) : sb.point_velocity(c.a, c.Wa);
@@ -214,8 +216,8 @@ StickingOutcome solve_sticking_group(SolverBodyArray& sb, std::vector<SolverCont
   const std::span<BodyPlan> planned(plans.data(), static_cast<std::size_t>(bodies));
 
   // Each body on its own (a link's total is zero: both bodies give back what it carried).
-  std::array<Vec3, kStickingMaxPoints> totals;
-  std::fill(totals.begin(), totals.end(), Vec3::Zero());
+  std::array<Vec3, kStickingMaxPoints> totals;  // Eigen leaves them uninitialised
+  std::fill_n(totals.begin(), group.size(), Vec3::Zero());
   std::array<Point, kStickingMaxPoints> points;
   double worst = 0.0;
   for (BodyPlan& plan : planned) {
