@@ -123,19 +123,18 @@ StickingOutcome solve_body(const SolverBodyArray& sb, std::span<const Point> pts
                            std::array<Vec3, kStickingMaxPoints>& totals, double& worst) {
   // The body's velocity y = (v, omega) that brings every touching point to its wanted velocity,
   // by least squares: G y = sum J_i^T wanted_i, G = sum J_i^T J_i.
+  const auto touching = std::count_if(pts.begin(), pts.end(), [](const Point& p) { return p.touching; });
+  if (touching < kStickingMinPoints) return StickingOutcome::too_few_points;
   Mat6 G = Mat6::Zero();
   Vec6 rhs = Vec6::Zero();
-  int touching = 0;
   for (const Point& p : pts) {
     if (!p.touching) continue;
-    ++touching;
     const Mat3& W = *p.W;
     G.topLeftCorner<3, 3>() += Mat3::Identity();
     G.topRightCorner<3, 3>() += W;
     G.bottomRightCorner<3, 3>() += W.transpose() * W;
     rhs += generalised(W, p.wanted);
   }
-  if (touching < kStickingMinPoints) return StickingOutcome::too_few_points;
   G.bottomLeftCorner<3, 3>() = G.topRightCorner<3, 3>().transpose();
   const Eigen::LDLT<Mat6> ldlt(G);
   const Vec6 pivots = ldlt.vectorD().cwiseAbs();
