@@ -221,7 +221,8 @@ void ShockPropagation::solve_level(ImpulseStep& step, int l) {
 }
 
 void ShockPropagation::solve_groups(ImpulseStep& step) {
-  // Each pass runs over the groups that have not converged yet: a group leaves once no impulse of
+  // First the groups whose touching points can all stick, each solved directly; then the passes
+  // over the rest. Each pass runs over the groups that have not converged yet: a group leaves once no impulse of
   // a pass changes a point's velocity by more than kRestingConverged (its later passes would
   // change nothing that matters). The level ends as a whole level did before it was split: when
   // every group has converged, or when the largest change of a pass stalls. (Letting a stalled
@@ -237,8 +238,8 @@ void ShockPropagation::solve_groups(ImpulseStep& step) {
   while (pass < passes && !active_.empty()) {
     double largest_change = 0.0;
     if (active_.size() == 1) {
-      // One group (a stack's level, a Jenga layer): without the bookkeeping, which cost 8% of a
-      // stack_10 step.
+      // One group (a sliding box of a stack, a Jenga layer the direct solve declined): without the
+      // bookkeeping, which cost 8% of a stack_10 step.
       largest_change = solve_group_pass(context, group(active_[0]));
       if (largest_change < kRestingConverged) active_.clear();
     } else {
@@ -277,8 +278,8 @@ void ShockPropagation::solve_groups(ImpulseStep& step) {
 }
 
 double ShockPropagation::solve_sticking_groups(ImpulseStep& step) {
-  // Each group that is one body on frozen supports, solved directly when every touching point can
-  // stick (sticking_solve.hpp); the others stay active for the passes.
+  // Each group of bodies on frozen supports solved directly when every touching point can stick
+  // (sticking_solve.hpp); the groups it declines stay active for the passes.
   const int groups = static_cast<int>(group_start_.size()) - 1;
   double worst = -1.0;
   active_.clear();
