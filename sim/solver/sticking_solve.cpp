@@ -14,10 +14,10 @@ namespace {
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
-// A touching point's velocity must end this close to its target, and a free point may approach
-// this much faster than it may (m/s): the passes leave a group once no impulse changes a velocity
-// by more than kRestingConverged, so a direct solve held to the same bound is as converged as they
-// are; the rounding of the 6x6 solve is some 1e-16 m/s per m/s of the body's velocity.
+// A touching point's velocity must end this close to its target, and a free point may approach at
+// most this much faster than its target allows (m/s): the passes leave a group once no impulse
+// changes a velocity by more than kRestingConverged, so a direct solve held to the same bound is as
+// converged as they are; the rounding of the 6x6 solve is some 1e-16 m/s per m/s of velocity.
 constexpr double kStickingResidual = kRestingConverged;
 // Smallest pivot of a body's 6x6 normal matrix, relative to its largest, for its points to fix its
 // six velocities: points on one line leave a pivot of rounding size (1e-16 relative), while points
