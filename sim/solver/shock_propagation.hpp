@@ -15,7 +15,8 @@ namespace boxpile {
 // fixed bodies; level by level from the bottom, up to `shock_passes` passes with e = 0 over the
 // contacts that reach down from the level (fewer once the level has converged), with every
 // lower level frozen (infinite mass). A level's contacts fall into groups that share no moving
-// body; each group leaves the passes once it has converged.
+// body; a group whose touching points can all stick is solved directly, and each other group
+// leaves the passes once it has converged.
 class ShockPropagation {
  public:
   // Sizes the graph, the levels and the queue for `storage.bodies` bodies and their contacts.
@@ -54,6 +55,10 @@ class ShockPropagation {
   void group_level_contacts(const ImpulseStep& step);
   // The level's passes over its groups, each group until it converges, the level until it stalls.
   void solve_groups(ImpulseStep& step);
+  // The level's groups of bodies on frozen supports solved directly where every touching point
+  // sticks (sticking_solve.hpp); the rest become the passes' active groups. Returns the largest residual of a direct
+  // solve (m/s), or -1 when none was solved.
+  double solve_sticking_groups(ImpulseStep& step);
   // The contacts of group g of the level being solved.
   std::span<const LevelContact> group(int g) const {
     return {group_contacts_.data() + group_start_[g], group_contacts_.data() + group_start_[g + 1]};

@@ -41,6 +41,9 @@ class SolverBodyArray {
     const SolverBody& b = at(c.b);
     return a.v + c.Wa * a.omega - b.v - c.Wb * b.omega;
   }
+  // One body's velocities, momenta and inverse mass properties (kGround: the ground's slot).
+  const SolverBody& state(int body) const { return at(body); }
+  SolverBody& state(int body) { return at(body); }
   // Velocity of body's material point at the offset whose W = [r]x^T is given.
   Vec3 point_velocity(int body, const Mat3& W) const { return at(body).v + W * at(body).omega; }
   // Applies j to A and -j to B at the contact offsets, changing the velocities directly

@@ -52,9 +52,11 @@ struct StepStats {
   std::array<double, kMaxSolverPasses> contact_residual{};
   int contact_passes_used = 0;
   int shock_levels = 0;
-  int shock_passes_used = 0;  // summed over the levels
+  int shock_passes_used = 0;  // summed over the levels (a level's direct solves count as one)
   // Largest velocity change |K dj| an impulse made in each shock-propagation pass, over the
-  // levels (a level stops once it is below 1e-9 m/s), m/s; shock_pass_count passes are recorded.
+  // levels (a level stops once it is below kRestingConverged), m/s; shock_pass_count passes are
+  // recorded. A level's direct solves of sticking groups count as its first pass, with their
+  // largest residual as its change.
   std::array<double, kMaxSolverPasses> shock_change{};
   int shock_pass_count = 0;  // the most passes any level used
   // Levels in which a group (or the level as a whole) stopped because its passes no longer converged.

@@ -1,0 +1,245 @@
+#include "boxpile/sim/solver/sticking_solve.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "boxpile/sim/solver/impulse_step.hpp"
+
+namespace boxpile {
+
+namespace {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+// A touching point's velocity must end this close to its target, and a free point may approach at
+// most this much faster than its target allows (m/s): the passes leave a group once no impulse
+// changes a velocity by more than kRestingConverged, so a direct solve held to the same bound is as
+// converged as they are; the rounding of the 6x6 solve is some 1e-16 m/s per m/s of velocity.
+constexpr double kStickingResidual = kRestingConverged;
+// Smallest pivot of a body's 6x6 normal matrix, relative to its largest, for its points to fix its
+// six velocities: points on one line leave a pivot of rounding size (1e-16 relative), while points
+// spread over a face leave pivots of the order of (spread / lever)^2, far above this.
+constexpr double kStickingPivotRatio = 1e-9;
+// At most this many bodies and points in a group (a Jenga layer is three blocks and some 48
+// points): larger groups go to the passes, so the solve needs no heap.
+constexpr int kStickingMaxBodies = 4;
+constexpr int kStickingMaxPoints = 64;
+// A body needs this many touching points for its velocity to be fixed by them.
+constexpr int kStickingMinPoints = 3;
+
+// One point of a body as the solve sees it: its place in the group, the body's W = [r]x^T there,
+// the sign of the impulse on the body (+1 when it is A), the velocity the point must reach, and
+// whether it touches a body that does not move (depth >= 0: it sticks), has a gap to one (it
+// carries no impulse), or links two moving bodies (it carries no impulse either). Left
+// uninitialised until filled: a group's array of them is set up for every group of every level.
+struct Point {
+  int k;
+  SolverContact* c;
+  const Mat3* W;
+  double side;
+  Vec3 wanted;
+  bool touching;
+  bool link;
+};
+
+// A moving body's solve: its new momenta and the velocities they imply.
+struct BodyPlan {
+  int body = 0;
+  Vec3 P = Vec3::Zero(), L = Vec3::Zero();
+  Vec3 v = Vec3::Zero(), omega = Vec3::Zero();
+};
+
+// J^T q for J = [E, W]: the generalised impulse (q, r x q) of the impulse q on the body at the
+// point (W^T q = r x q).
+Vec6 generalised(const Mat3& W, const Vec3& q) {
+  Vec6 g;
+  g.head<3>() = q;
+  g.tail<3>() = W.transpose() * q;
+  return g;
+}
+
+// J y = y_lin + W y_ang: the velocity of the point under the body velocity y.
+Vec3 at_point(const Mat3& W, const Vec6& y) { return y.head<3>() + W * y.tail<3>(); }
+
+// Whether a total impulse on A lies in the friction cone (J_n >= 0, |J_t| <= mu J_n).
+bool in_cone(const SolverContact& c, const Vec3& J) {
+  const double jn = J.dot(c.n);
+  return jn >= 0.0 && norm_within((J - jn * c.n).squaredNorm(), c.friction * jn);
+}
+
+// The group's moving bodies, or why the solve does not take the group.
+StickingOutcome collect_bodies(const std::vector<SolverContact>& contacts,
+                               std::span<const ShockPropagation::LevelContact> group,
+                               std::array<BodyPlan, kStickingMaxBodies>& plans, int& count) {
+  if (group.size() > static_cast<std::size_t>(kStickingMaxPoints)) return StickingOutcome::too_large;
+  count = 0;
+  auto add = [&](int body) {
+    for (int i = 0; i < count; ++i)
+      if (plans[static_cast<std::size_t>(i)].body == body) return true;
+    if (count == kStickingMaxBodies) return false;
+    plans[static_cast<std::size_t>(count++)].body = body;
+    return true;
+  };
+  for (const ShockPropagation::LevelContact& lc : group) {
+    const SolverContact& c = contacts[static_cast<std::size_t>(lc.index)];
+    if (c.friction <= 0.0) return StickingOutcome::frictionless;
+    if ((lc.a_moves && !add(c.a)) || (lc.b_moves && !add(c.b))) return StickingOutcome::too_large;
+  }
+  return StickingOutcome::solved;
+}
+
+// The points of the group where `body` moves.
+int collect_points(const SolverBodyArray& sb, std::vector<SolverContact>& contacts,
+                   std::span<const ShockPropagation::LevelContact> group, int body,
+                   std::array<Point, kStickingMaxPoints>& points) {
+  int count = 0;
+  for (std::size_t k = 0; k < group.size(); ++k) {
+    const ShockPropagation::LevelContact& lc = group[k];
+    SolverContact& c = contacts[static_cast<std::size_t>(lc.index)];
+    const bool as_a = lc.a_moves && c.a == body, as_b = lc.b_moves && c.b == body;
+    if (!as_a && !as_b) continue;
+    Point& p = points[static_cast<std::size_t>(count++)];
+    p.k = static_cast<int>(k);
+    p.c = &c;
+    p.side = as_a ? 1.0 : -1.0;
+    p.W = as_a ? &c.Wa : &c.Wb;
+    p.link = lc.a_moves && lc.b_moves;
+    p.touching = !p.link && c.depth >= 0.0;
+    p.wanted = Vec3::Zero();
+    if (p.link) continue;
+    // u = v_A - v_B = target n: the moving point's velocity is the frozen one's plus side target n.
+    const Vec3 frozen = as_a ? sb.point_velocity(c.b, c.Wb) : sb.point_velocity(c.a, c.Wa);
+    p.wanted = frozen + p.side * lc.target * c.n;
+  }
+  return count;
+}
+
+// One body's solve over its points: its plan and each point's total (on A), or why sticking is not
+// a solution. `worst` grows to the largest distance of a touching point from its target.
+StickingOutcome solve_body(const SolverBodyArray& sb, std::span<const Point> pts, BodyPlan& plan,
+                           std::array<Vec3, kStickingMaxPoints>& totals, double& worst) {
+  // The body's velocity y = (v, omega) that brings every touching point to its wanted velocity,
+  // by least squares: G y = sum J_i^T wanted_i, G = sum J_i^T J_i.
+  const auto touching = std::count_if(pts.begin(), pts.end(), [](const Point& p) { return p.touching; });
+  if (touching < kStickingMinPoints) return StickingOutcome::too_few_points;
+  Mat6 G = Mat6::Zero();
+  Vec6 rhs = Vec6::Zero();
+  for (const Point& p : pts) {
+    if (!p.touching) continue;
+    const Mat3& W = *p.W;
+    G.topLeftCorner<3, 3>() += Mat3::Identity();
+    G.topRightCorner<3, 3>() += W;
+    G.bottomRightCorner<3, 3>() += W.transpose() * W;
+    rhs += generalised(W, p.wanted);
+  }
+  G.bottomLeftCorner<3, 3>() = G.topRightCorner<3, 3>().transpose();
+  const Eigen::LDLT<Mat6> ldlt(G);
+  const Vec6 pivots = ldlt.vectorD().cwiseAbs();
+  if (ldlt.info() != Eigen::Success || !(pivots.minCoeff() > kStickingPivotRatio * pivots.maxCoeff()))
+    return StickingOutcome::ill_conditioned;
+  const Vec6 velocity = ldlt.solve(rhs);
+
+  // Check it against what the passes solve: touching points at their targets, points with a gap
+  // approaching no faster than the gap allows (links are checked once both bodies have moved).
+  for (const Point& p : pts) {
+    if (p.link) continue;
+    const Vec3 point = at_point(*p.W, velocity);
+    if (p.touching) {
+      worst = std::max(worst, (point - p.wanted).norm());
+    } else if (p.side * p.c->n.dot(point - p.wanted) < -kStickingResidual) {
+      return StickingOutcome::gap_closes;
+    }
+  }
+  if (!(worst <= kStickingResidual)) return StickingOutcome::off_target;
+
+  // The smallest totals over the phase that give the body that velocity: the generalised impulse
+  // the touching points must supply is b = M (y - y_now) + sum over every point of J_i^T Q_old_i
+  // (a free point gives back what it carried), and Q_i = J_i G^-1 b is the least-norm split of b
+  // over the touching points (sum J_i^T Q_i = G G^-1 b = b). Each must lie in its cone.
+  const SolverBody& state = sb.state(plan.body);
+  Vec6 b;
+  b.head<3>() = velocity.head<3>() / state.inv_mass - state.P;
+  b.tail<3>() = state.inv_inertia.inverse() * velocity.tail<3>() - state.L;
+  for (const Point& p : pts) b += generalised(*p.W, p.side * p.c->accumulated);
+  const Vec6 split = ldlt.solve(b);
+  plan.P = state.P;
+  plan.L = state.L;
+  for (const Point& p : pts) {
+    const Vec3 on_body = p.touching ? at_point(*p.W, split) : Vec3::Zero();
+    Vec3& total = totals[static_cast<std::size_t>(p.k)];
+    total = p.side * on_body;  // on A, as accumulated is kept
+    if (p.touching && !in_cone(*p.c, total)) return StickingOutcome::outside_cone;
+    // The body's momenta change by what the point's total changed (as SolverBodyArray::apply).
+    const Vec3 change = on_body - p.side * p.c->accumulated;
+    plan.P += change;
+    plan.L += p.W->transpose() * change;
+  }
+  // The velocities the momenta imply: the least-squares velocity to rounding (1e-16 relative).
+  plan.v = state.inv_mass * plan.P;
+  plan.omega = state.inv_inertia * plan.L;
+  return StickingOutcome::solved;
+}
+
+// Whether every contact between two moving bodies, free of impulse, approaches no faster than its
+// target allows once both bodies have their planned velocities.
+bool links_hold(const std::vector<SolverContact>& contacts, std::span<const ShockPropagation::LevelContact> group,
+                std::span<const BodyPlan> plans) {
+  auto plan_of = [&](int body) -> const BodyPlan& {
+    for (const BodyPlan& plan : plans)
+      if (plan.body == body) return plan;
+    return plans[0];  // not reached: every moving body of the group has a plan
+  };
+  for (const ShockPropagation::LevelContact& lc : group) {
+    if (!(lc.a_moves && lc.b_moves)) continue;
+    const SolverContact& c = contacts[static_cast<std::size_t>(lc.index)];
+    const BodyPlan& a = plan_of(c.a);
+    const BodyPlan& b = plan_of(c.b);
+    const Vec3 u = a.v + c.Wa * a.omega - b.v - c.Wb * b.omega;
+    if (c.n.dot(u) < lc.target - kStickingResidual) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+StickingOutcome solve_sticking_group(SolverBodyArray& sb, std::vector<SolverContact>& contacts,
+                                     std::span<const ShockPropagation::LevelContact> group, bool friction,
+                                     ImpulseCounters& counters, double& worst_residual) {
+  if (!friction) return StickingOutcome::frictionless;
+  std::array<BodyPlan, kStickingMaxBodies> plans;
+  int bodies = 0;
+  if (const StickingOutcome o = collect_bodies(contacts, group, plans, bodies); o != StickingOutcome::solved) return o;
+  const std::span<BodyPlan> planned(plans.data(), static_cast<std::size_t>(bodies));
+
+  // Each body on its own (a link's total is zero: both bodies give back what it carried).
+  std::array<Vec3, kStickingMaxPoints> totals;  // Eigen leaves them uninitialised
+  std::fill_n(totals.begin(), group.size(), Vec3::Zero());
+  std::array<Point, kStickingMaxPoints> points;
+  double worst = 0.0;
+  for (BodyPlan& plan : planned) {
+    const int count = collect_points(sb, contacts, group, plan.body, points);
+    const std::span<const Point> pts(points.data(), static_cast<std::size_t>(count));
+    if (const StickingOutcome o = solve_body(sb, pts, plan, totals, worst); o != StickingOutcome::solved) return o;
+  }
+  if (bodies > 1 && !links_hold(contacts, group, planned)) return StickingOutcome::gap_closes;
+
+  // Commit.
+  for (std::size_t k = 0; k < group.size(); ++k)
+    contacts[static_cast<std::size_t>(group[k].index)].accumulated = totals[k];
+  for (const BodyPlan& plan : planned) {
+    SolverBody& state = sb.state(plan.body);
+    state.P = plan.P;
+    state.L = plan.L;
+    state.v = plan.v;
+    state.omega = plan.omega;
+  }
+  counters.normal_impulses += group.size();
+  counters.friction_evaluations += group.size();
+  worst_residual = worst;
+  return StickingOutcome::solved;
+}
+
+}  // namespace boxpile
