@@ -31,7 +31,8 @@ double PenetrationRecovery::pseudo_target(const SolverBodies& sb, const SolverCo
 void PenetrationRecovery::reserve(const StepStorage& storage) {
   pseudo_v_.reserve(storage.bodies);
   pseudo_omega_.reserve(storage.bodies);
-  pushed_.reserve(storage.bodies);
+  pushed_at_.reserve(storage.bodies);
+  still_at_.reserve(storage.contacts());
   lambda_.reserve(storage.contacts());
   target_.reserve(storage.contacts());
   all_.reserve(storage.contacts());
@@ -45,7 +46,9 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
   const std::size_t n = sb.bodies.size();
   pseudo_v_.assign(n, Vec3::Zero());
   pseudo_omega_.assign(n, Vec3::Zero());
-  pushed_.assign(n, 0);
+  clock_ = 0;
+  pushed_at_.assign(n, -1);
+  still_at_.assign(contacts.size(), -1);
   lambda_.assign(contacts.size(), 0.0);
   target_.resize(contacts.size());
   all_.clear();
@@ -90,23 +93,37 @@ void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const i
     const RigidBody& b = sb.get(body);
     pseudo_v_[body] += b.inv_mass * impulse;
     pseudo_omega_[body] += b.inv_inertia_world * r.cross(impulse);
-    pushed_[body] = 1;
+    pushed_at_[body] = clock_;
   };
+  // The tick of the last pseudo-impulse on either body (-1: none; the ground is never pushed).
+  auto last_push = [&](const SolverContact& c) {
+    return std::max(c.a >= 0 ? pushed_at_[c.a] : -1L, c.b >= 0 ? pushed_at_[c.b] : -1L);
+  };
+  // A contact visited without change in this phase (its 1 / (n . K n) is the phase's) whose
+  // bodies no pseudo-impulse has reached since computes the same u_n and the same lambda again.
+  const long phase_start = clock_;
 
   for (int pass = 0; pass < step.settings().recovery_passes; ++pass) {
     double largest_change = 0.0;  // |pseudo-velocity change| dt / slop
     for (const PhaseContact& pc : phase_) {
       const SolverContact& c = step.contacts[pc.index];
-      // A contact that asks for no push and has none, between bodies nothing has pushed yet, would
-      // stay at zero: skipped (most of a pile's resting contacts in the first passes).
-      if (target_[pc.index] <= 0.0 && lambda_[pc.index] == 0.0 && !(c.a >= 0 && pushed_[c.a]) &&
-          !(c.b >= 0 && pushed_[c.b]))
-        continue;
+      // Skipped, as they would come out unchanged: a contact that asks for no push and has none,
+      // between bodies nothing has pushed yet (most of a pile's resting contacts in the first
+      // passes), and one unchanged at its last visit whose bodies nothing has pushed since (in a
+      // phase some of whose contacts still converge, those that already have).
+      const long pushed = last_push(c);
+      if (target_[pc.index] <= 0.0 && lambda_[pc.index] == 0.0 && pushed < 0) continue;
+      const long still = still_at_[pc.index];
+      if (still > phase_start && still > pushed) continue;
+      ++clock_;
       // Normal-only: lambda += (target - u_n) / (n . K n), kept >= 0 (pushes only).
       const double un = c.n.dot(point_velocity(c.a, c.ra) - point_velocity(c.b, c.rb));
       const double lambda = std::max(0.0, lambda_[pc.index] + (target_[pc.index] - un) * pc.inv_k_nn);
       const double change = lambda - lambda_[pc.index];
-      if (change == 0.0) continue;
+      if (change == 0.0) {
+        still_at_[pc.index] = clock_;
+        continue;
+      }
       largest_change = std::max(largest_change, std::abs(change) / pc.inv_k_nn * step.dt() / c.slop);
       lambda_[pc.index] = lambda;
       const Vec3 impulse = change * c.n;

@@ -44,8 +44,12 @@ class PenetrationRecovery {
   };
 
   std::vector<Vec3> pseudo_v_, pseudo_omega_;
-  std::vector<char> pushed_;    // per body, whether a pseudo-impulse has reached it this step
-  std::vector<double> lambda_;  // per contact, its pseudo-impulse so far
+  // The passes' clock: one tick per contact visited this step. A contact visited with no change,
+  // whose bodies no pseudo-impulse has reached since, would come out unchanged again: skipped.
+  long clock_ = 0;
+  std::vector<long> pushed_at_;  // per body, the tick of its last pseudo-impulse this step (-1: none)
+  std::vector<long> still_at_;   // per contact, the tick it was last visited without change (-1: none)
+  std::vector<double> lambda_;   // per contact, its pseudo-impulse so far
   std::vector<double> target_;  // per contact, the separating pseudo-velocity it asks for, m/s
   std::vector<int> all_;        // every contact of the step
   std::vector<PhaseContact> phase_;
