@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 namespace boxpile {
 
@@ -11,6 +13,12 @@ namespace {
 // inside the overlap recovery leaves alone, and the next step's recovery starts from it (a slop
 // of 0 never converges early: every pass runs).
 constexpr double kRecoveryConverged = 0.05;
+// A shock level's group stalls when kRecoveryStallPasses passes in a row fail to bring the largest
+// change below kRecoveryProgress of the smallest so far (a body wedged between two frozen ones,
+// whose pseudo-impulses only grow): it stops, and the phase with every body movable, which
+// follows, is the one that can free it.
+constexpr double kRecoveryProgress = 0.95;
+constexpr int kRecoveryStallPasses = 3;
 }  // namespace
 
 // The separating pseudo-velocity a contact asks for, beyond what the resolved velocities already
@@ -31,12 +39,17 @@ double PenetrationRecovery::pseudo_target(const SolverBodies& sb, const SolverCo
 void PenetrationRecovery::reserve(const StepStorage& storage) {
   pseudo_v_.reserve(storage.bodies);
   pseudo_omega_.reserve(storage.bodies);
-  pushed_at_.reserve(storage.bodies);
-  still_at_.reserve(storage.contacts());
+  pushed_.reserve(storage.bodies);
   lambda_.reserve(storage.contacts());
   target_.reserve(storage.contacts());
   all_.reserve(storage.contacts());
   phase_.reserve(storage.contacts());
+  grouped_.reserve(storage.contacts());
+  root_.reserve(storage.bodies);
+  group_of_.reserve(storage.bodies);
+  group_start_.reserve(storage.bodies + 1);
+  group_fill_.reserve(storage.bodies);
+  contact_group_.reserve(storage.contacts());
 }
 
 void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* shock) {
@@ -46,9 +59,7 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
   const std::size_t n = sb.bodies.size();
   pseudo_v_.assign(n, Vec3::Zero());
   pseudo_omega_.assign(n, Vec3::Zero());
-  clock_ = 0;
-  pushed_at_.assign(n, -1);
-  still_at_.assign(contacts.size(), -1);
+  pushed_.assign(n, 0);
   lambda_.assign(contacts.size(), 0.0);
   target_.resize(contacts.size());
   all_.clear();
@@ -72,20 +83,66 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
   solve_phase(step, all_, nullptr, 0);
 }
 
-void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const int> group,
+void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const int> contacts,
                                       const ShockPropagation* shock, int level) {
+  collect_phase(step, contacts, shock, level);
+  group_phase(step.sb.bodies.size());
+  for (std::size_t g = 0; g + 1 < group_start_.size(); ++g)
+    solve_group(step, std::span<const PhaseContact>(grouped_.data() + group_start_[g],
+                                                    grouped_.data() + group_start_[g + 1]),
+                shock != nullptr);
+}
+
+void PenetrationRecovery::collect_phase(const ImpulseStep& step, std::span<const int> contacts,
+                                        const ShockPropagation* shock, int level) {
   const SolverBodies& sb = step.sb;
   // With the levels, the level's own bodies (shock propagation's rule); without, every body
   // that is not fixed.
   auto moves = [&](int body) { return shock ? shock->moves(body, level) : body >= 0 && !sb.get(body).fixed; };
   // Each contact with what its passes read: which bodies move, and 1 / (n . K n) over them.
   phase_.clear();
-  for (const int k : group) {
+  for (const int k : contacts) {
     const SolverContact& c = step.contacts[k];
     const bool a_moves = moves(c.a), b_moves = moves(c.b);
     const double k_nn = c.n.dot(((a_moves ? c.Ka : Mat3::Zero()) + (b_moves ? c.Kb : Mat3::Zero())) * c.n);
-    if (k_nn > 0.0) phase_.push_back({k, a_moves, b_moves, 1.0 / k_nn});
+    if (k_nn > 0.0) phase_.push_back({k, c.a, c.b, a_moves, b_moves, 1.0 / k_nn});
   }
+}
+
+void PenetrationRecovery::group_phase(std::size_t bodies) {
+  // The phase's moving bodies joined by the contacts between two of them (union-find, path
+  // halving); each contact belongs to the group of its moving body.
+  root_.resize(bodies);
+  for (std::size_t i = 0; i < bodies; ++i) root_[i] = static_cast<int>(i);
+  auto find = [&](int body) {
+    while (root_[body] != body) body = root_[body] = root_[root_[body]];
+    return body;
+  };
+  for (const PhaseContact& pc : phase_)
+    if (pc.a_moves && pc.b_moves) root_[find(pc.a)] = find(pc.b);
+  // Each group's contacts together, in the phase's order (a counting sort by the group's root).
+  group_of_.assign(bodies, -1);
+  group_start_.clear();
+  contact_group_.clear();
+  for (const PhaseContact& pc : phase_) {
+    int& g = group_of_[find(pc.a_moves ? pc.a : pc.b)];
+    if (g < 0) {
+      g = static_cast<int>(group_start_.size());
+      group_start_.push_back(0);
+    }
+    ++group_start_[g];
+    contact_group_.push_back(g);
+  }
+  int first = 0;
+  for (int& start : group_start_) first += std::exchange(start, first);
+  group_start_.push_back(first);
+  group_fill_.assign(group_start_.begin(), group_start_.end() - 1);
+  grouped_.resize(phase_.size());
+  for (std::size_t i = 0; i < phase_.size(); ++i) grouped_[group_fill_[contact_group_[i]]++] = phase_[i];
+}
+
+void PenetrationRecovery::solve_group(const ImpulseStep& step, std::span<const PhaseContact> group, bool stop_stalled) {
+  const SolverBodies& sb = step.sb;
   auto point_velocity = [&](int body, const Vec3& r) -> Vec3 {
     return body < 0 ? Vec3::Zero() : Vec3(pseudo_v_[body] + pseudo_omega_[body].cross(r));
   };
@@ -93,37 +150,26 @@ void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const i
     const RigidBody& b = sb.get(body);
     pseudo_v_[body] += b.inv_mass * impulse;
     pseudo_omega_[body] += b.inv_inertia_world * r.cross(impulse);
-    pushed_at_[body] = clock_;
+    pushed_[body] = 1;
   };
-  // The tick of the last pseudo-impulse on either body (-1: none; the ground is never pushed).
-  auto last_push = [&](const SolverContact& c) {
-    return std::max(c.a >= 0 ? pushed_at_[c.a] : -1L, c.b >= 0 ? pushed_at_[c.b] : -1L);
-  };
-  // A contact visited without change in this phase (its 1 / (n . K n) is the phase's) whose
-  // bodies no pseudo-impulse has reached since computes the same u_n and the same lambda again.
-  const long phase_start = clock_;
-
+  // The group's passes until it converges: groups share no moving body, so one converged stops
+  // while another still runs.
+  double lowest_change = std::numeric_limits<double>::infinity();
+  int passes_without_progress = 0;
   for (int pass = 0; pass < step.settings().recovery_passes; ++pass) {
     double largest_change = 0.0;  // |pseudo-velocity change| dt / slop
-    for (const PhaseContact& pc : phase_) {
+    for (const PhaseContact& pc : group) {
+      // A contact that asks for no push and has none, between bodies nothing has pushed yet, would
+      // stay at zero: skipped (most of a pile's resting contacts in the first passes).
+      if (target_[pc.index] <= 0.0 && lambda_[pc.index] == 0.0 && !(pc.a >= 0 && pushed_[pc.a]) &&
+          !(pc.b >= 0 && pushed_[pc.b]))
+        continue;
       const SolverContact& c = step.contacts[pc.index];
-      // Skipped, as they would come out unchanged: a contact that asks for no push and has none,
-      // between bodies nothing has pushed yet (most of a pile's resting contacts in the first
-      // passes), and one unchanged at its last visit whose bodies nothing has pushed since (in a
-      // phase some of whose contacts still converge, those that already have).
-      const long pushed = last_push(c);
-      if (target_[pc.index] <= 0.0 && lambda_[pc.index] == 0.0 && pushed < 0) continue;
-      const long still = still_at_[pc.index];
-      if (still > phase_start && still > pushed) continue;
-      ++clock_;
       // Normal-only: lambda += (target - u_n) / (n . K n), kept >= 0 (pushes only).
       const double un = c.n.dot(point_velocity(c.a, c.ra) - point_velocity(c.b, c.rb));
       const double lambda = std::max(0.0, lambda_[pc.index] + (target_[pc.index] - un) * pc.inv_k_nn);
       const double change = lambda - lambda_[pc.index];
-      if (change == 0.0) {
-        still_at_[pc.index] = clock_;
-        continue;
-      }
+      if (change == 0.0) continue;
       largest_change = std::max(largest_change, std::abs(change) / pc.inv_k_nn * step.dt() / c.slop);
       lambda_[pc.index] = lambda;
       const Vec3 impulse = change * c.n;
@@ -131,6 +177,12 @@ void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const i
       if (pc.b_moves) push(c.b, -impulse, c.rb);
     }
     if (largest_change < kRecoveryConverged) break;
+    if (largest_change < kRecoveryProgress * lowest_change) {
+      lowest_change = largest_change;
+      passes_without_progress = 0;
+    } else if (stop_stalled && ++passes_without_progress == kRecoveryStallPasses) {
+      break;
+    }
   }
 }
 

@@ -33,26 +33,36 @@ class PenetrationRecovery {
  private:
   // The separating pseudo-velocity contact `c` asks for, m/s (see the .cpp).
   static double pseudo_target(const SolverBodies& sb, const SolverContact& c, double beta, double dt);
-  // The passes over one group of contacts; bodies below `level` are frozen (none without `shock`).
-  void solve_phase(const ImpulseStep& step, std::span<const int> group, const ShockPropagation* shock, int level);
-
   // A contact of the phase being solved, with what its passes read.
   struct PhaseContact {
     int index = 0;  // in step.contacts
+    int a = 0, b = 0;  // its bodies (kGround: the ground)
     bool a_moves = false, b_moves = false;
     double inv_k_nn = 0.0;  // 1 / (n . K n) over the bodies that move
   };
 
+  // One phase: `contacts` with bodies below `level` frozen (none without `shock`), solved as groups
+  // that share no moving body, each by its passes until it converges.
+  void solve_phase(const ImpulseStep& step, std::span<const int> contacts, const ShockPropagation* shock, int level);
+  // The phase's contacts with which of their bodies move (phase_).
+  void collect_phase(const ImpulseStep& step, std::span<const int> contacts, const ShockPropagation* shock, int level);
+  // phase_ sorted into groups that share no moving body (grouped_, group_start_).
+  void group_phase(std::size_t bodies);
+  // The passes over one group, until it converges, `recovery_passes` have run, or (with
+  // `stop_stalled`) a pass changes almost as much as the one before.
+  void solve_group(const ImpulseStep& step, std::span<const PhaseContact> group, bool stop_stalled);
+
   std::vector<Vec3> pseudo_v_, pseudo_omega_;
-  // The passes' clock: one tick per contact visited this step. A contact visited with no change,
-  // whose bodies no pseudo-impulse has reached since, would come out unchanged again: skipped.
-  long clock_ = 0;
-  std::vector<long> pushed_at_;  // per body, the tick of its last pseudo-impulse this step (-1: none)
-  std::vector<long> still_at_;   // per contact, the tick it was last visited without change (-1: none)
-  std::vector<double> lambda_;   // per contact, its pseudo-impulse so far
+  std::vector<char> pushed_;    // per body, whether a pseudo-impulse has reached it this step
+  std::vector<double> lambda_;  // per contact, its pseudo-impulse so far
   std::vector<double> target_;  // per contact, the separating pseudo-velocity it asks for, m/s
   std::vector<int> all_;        // every contact of the step
   std::vector<PhaseContact> phase_;
+  std::vector<PhaseContact> grouped_;  // phase_ by group
+  std::vector<int> root_;              // per body, union-find parent among the phase's moving bodies
+  std::vector<int> group_of_;          // per root body, its group (-1: none)
+  std::vector<int> group_start_, group_fill_;
+  std::vector<int> contact_group_;     // per contact of phase_, its group
 };
 
 }  // namespace boxpile
