@@ -23,8 +23,9 @@ class PenetrationRecovery {
   // `penetration_recovery`) and keep every contact from ending the step deeper than the slop,
   // counting the velocities the step resolved. With `shock`'s levels (nullptr: shock propagation
   // is off) each level from the ground up with the lower ones frozen, then every contact with
-  // both bodies movable; each phase in at most `recovery_passes` sequential passes, fewer once
-  // converged. Fills pseudo_v and pseudo_omega (per body).
+  // both bodies movable; each phase as groups that share no moving body, each in at most
+  // `recovery_passes` sequential passes, fewer once converged (or, in a shock level, stalled:
+  // the phase with every body movable takes it up). Fills pseudo_v and pseudo_omega (per body).
   void run(const ImpulseStep& step, const ShockPropagation* shock);
 
   const std::vector<Vec3>& pseudo_v() const { return pseudo_v_; }
@@ -49,7 +50,7 @@ class PenetrationRecovery {
   // phase_ sorted into groups that share no moving body (grouped_, group_start_).
   void group_phase(std::size_t bodies);
   // The passes over one group, until it converges, `recovery_passes` have run, or (with
-  // `stop_stalled`) a pass changes almost as much as the one before.
+  // `stop_stalled`) it stalls: kRecoveryStallPasses passes in a row without progress.
   void solve_group(const ImpulseStep& step, std::span<const PhaseContact> group, bool stop_stalled);
 
   std::vector<Vec3> pseudo_v_, pseudo_omega_;
