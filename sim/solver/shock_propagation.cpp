@@ -207,13 +207,11 @@ double ShockPropagation::frozen_target(const SolverBodyArray& sb, const SolverCo
 
 void ShockPropagation::solve_level(ImpulseStep& step, int l) {
   SolverBodyArray& sb = step.resting;
-  // Contacts that reach down to a frozen body see only the moving body's share of K. A frozen
-  // body keeps its velocity through the level, so each contact's target is set once.
+  // A frozen body keeps its velocity through the level, so each contact's target is set once.
   level_contacts_.clear();
   for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
-    SolverContact& c = step.contacts[by_level_[k]];
+    const SolverContact& c = step.contacts[by_level_[k]];
     const bool a_moves = moves(c.a, l), b_moves = moves(c.b, l);
-    if (!(a_moves && b_moves)) set_collision_matrix(c, a_moves, b_moves);
     level_contacts_.push_back({by_level_[k], a_moves, b_moves, allow_gap(c, frozen_target(sb, c, l), step.dt())});
   }
   group_level_contacts(step);
@@ -287,12 +285,21 @@ double ShockPropagation::solve_sticking_groups(ImpulseStep& step) {
     double residual = 0.0;
     const StickingOutcome outcome =
         solve_sticking_group(step.resting, step.contacts, group(g), step.friction(), step.counters(), residual);
-    if (outcome == StickingOutcome::solved)
+    if (outcome == StickingOutcome::solved) {
       worst = std::max(worst, residual);
-    else
+    } else {
+      set_frozen_collision_matrices(step, group(g));
       active_.push_back(g);
+    }
   }
   return worst;
+}
+
+void ShockPropagation::set_frozen_collision_matrices(ImpulseStep& step, std::span<const LevelContact> contacts) {
+  // Contacts that reach down to a frozen body see only the moving body's share of K. Only the
+  // passes read K (the direct solve does not), so they are set only for the groups it declines.
+  for (const LevelContact& lc : contacts)
+    if (!(lc.a_moves && lc.b_moves)) set_collision_matrix(step.contacts[lc.index], lc.a_moves, lc.b_moves);
 }
 
 bool ShockPropagation::Progress::made(double change) {

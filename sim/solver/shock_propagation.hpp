@@ -59,6 +59,8 @@ class ShockPropagation {
   // sticks (sticking_solve.hpp); the rest become the passes' active groups. Returns the largest residual of a direct
   // solve (m/s), or -1 when none was solved.
   double solve_sticking_groups(ImpulseStep& step);
+  // Sets K and its inverse of the contacts that reach a frozen body to the moving body's share.
+  static void set_frozen_collision_matrices(ImpulseStep& step, std::span<const LevelContact> contacts);
   // The contacts of group g of the level being solved.
   std::span<const LevelContact> group(int g) const {
     return {group_contacts_.data() + group_start_[g], group_contacts_.data() + group_start_[g + 1]};
