@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <utility>
 
 namespace boxpile {
 
@@ -45,11 +43,7 @@ void PenetrationRecovery::reserve(const StepStorage& storage) {
   all_.reserve(storage.contacts());
   phase_.reserve(storage.contacts());
   grouped_.reserve(storage.contacts());
-  root_.reserve(storage.bodies);
-  group_of_.reserve(storage.bodies);
-  group_start_.reserve(storage.bodies + 1);
-  group_fill_.reserve(storage.bodies);
-  contact_group_.reserve(storage.contacts());
+  groups_.reserve(storage.bodies, storage.contacts());
 }
 
 void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* shock) {
@@ -87,10 +81,7 @@ void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const i
                                       const ShockPropagation* shock, int level) {
   collect_phase(step, contacts, shock, level);
   group_phase(step.sb.bodies.size());
-  for (std::size_t g = 0; g + 1 < group_start_.size(); ++g)
-    solve_group(step, std::span<const PhaseContact>(grouped_.data() + group_start_[g],
-                                                    grouped_.data() + group_start_[g + 1]),
-                shock != nullptr);
+  for (int g = 0; g < groups_.count(); ++g) solve_group(step, groups_.group(grouped_, g), shock != nullptr);
 }
 
 void PenetrationRecovery::collect_phase(const ImpulseStep& step, std::span<const int> contacts,
@@ -110,35 +101,12 @@ void PenetrationRecovery::collect_phase(const ImpulseStep& step, std::span<const
 }
 
 void PenetrationRecovery::group_phase(std::size_t bodies) {
-  // The phase's moving bodies joined by the contacts between two of them (union-find, path
-  // halving); each contact belongs to the group of its moving body.
-  root_.resize(bodies);
-  for (std::size_t i = 0; i < bodies; ++i) root_[i] = static_cast<int>(i);
-  auto find = [&](int body) {
-    while (root_[body] != body) body = root_[body] = root_[root_[body]];
-    return body;
+  // A contact moves the body it pushes that is not frozen; one between two of them links their
+  // groups.
+  auto moving = [](const PhaseContact& pc) {
+    return pc.a_moves ? MovingBodies{pc.a, pc.b_moves ? pc.b : -1} : MovingBodies{pc.b, -1};
   };
-  for (const PhaseContact& pc : phase_)
-    if (pc.a_moves && pc.b_moves) root_[find(pc.a)] = find(pc.b);
-  // Each group's contacts together, in the phase's order (a counting sort by the group's root).
-  group_of_.assign(bodies, -1);
-  group_start_.clear();
-  contact_group_.clear();
-  for (const PhaseContact& pc : phase_) {
-    int& g = group_of_[find(pc.a_moves ? pc.a : pc.b)];
-    if (g < 0) {
-      g = static_cast<int>(group_start_.size());
-      group_start_.push_back(0);
-    }
-    ++group_start_[g];
-    contact_group_.push_back(g);
-  }
-  int first = 0;
-  for (int& start : group_start_) first += std::exchange(start, first);
-  group_start_.push_back(first);
-  group_fill_.assign(group_start_.begin(), group_start_.end() - 1);
-  grouped_.resize(phase_.size());
-  for (std::size_t i = 0; i < phase_.size(); ++i) grouped_[group_fill_[contact_group_[i]]++] = phase_[i];
+  groups_.sort(std::span<const PhaseContact>(phase_), bodies, moving, grouped_);
 }
 
 void PenetrationRecovery::solve_group(const ImpulseStep& step, std::span<const PhaseContact> group, bool stop_stalled) {
@@ -154,8 +122,7 @@ void PenetrationRecovery::solve_group(const ImpulseStep& step, std::span<const P
   };
   // The group's passes until it converges: groups share no moving body, so one converged stops
   // while another still runs.
-  double lowest_change = std::numeric_limits<double>::infinity();
-  int passes_without_progress = 0;
+  PassProgress progress(kRecoveryProgress, kRecoveryStallPasses);
   for (int pass = 0; pass < step.settings().recovery_passes; ++pass) {
     double largest_change = 0.0;  // |pseudo-velocity change| dt / slop
     for (const PhaseContact& pc : group) {
@@ -177,12 +144,7 @@ void PenetrationRecovery::solve_group(const ImpulseStep& step, std::span<const P
       if (pc.b_moves) push(c.b, -impulse, c.rb);
     }
     if (largest_change < kRecoveryConverged) break;
-    if (largest_change < kRecoveryProgress * lowest_change) {
-      lowest_change = largest_change;
-      passes_without_progress = 0;
-    } else if (stop_stalled && ++passes_without_progress == kRecoveryStallPasses) {
-      break;
-    }
+    if (stop_stalled && !progress.made(largest_change)) break;
   }
 }
 

@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "boxpile/sim/solver/body_groups.hpp"
 #include "boxpile/sim/solver/impulse_step.hpp"
 #include "boxpile/sim/solver/shock_propagation.hpp"
 #include "boxpile/sim/step_storage.hpp"
@@ -47,7 +48,7 @@ class PenetrationRecovery {
   void solve_phase(const ImpulseStep& step, std::span<const int> contacts, const ShockPropagation* shock, int level);
   // The phase's contacts with which of their bodies move (phase_).
   void collect_phase(const ImpulseStep& step, std::span<const int> contacts, const ShockPropagation* shock, int level);
-  // phase_ sorted into groups that share no moving body (grouped_, group_start_).
+  // phase_ sorted into groups that share no moving body (grouped_, groups_).
   void group_phase(std::size_t bodies);
   // The passes over one group, until it converges, `recovery_passes` have run, or (with
   // `stop_stalled`) it stalls: kRecoveryStallPasses passes in a row without progress.
@@ -60,10 +61,7 @@ class PenetrationRecovery {
   std::vector<int> all_;        // every contact of the step
   std::vector<PhaseContact> phase_;
   std::vector<PhaseContact> grouped_;  // phase_ by group
-  std::vector<int> root_;              // per body, union-find parent among the phase's moving bodies
-  std::vector<int> group_of_;          // per root body, its group (-1: none)
-  std::vector<int> group_start_, group_fill_;
-  std::vector<int> contact_group_;     // per contact of phase_, its group
+  BodyGroups groups_;                  // the phase's groups
 };
 
 }  // namespace boxpile
