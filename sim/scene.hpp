@@ -68,7 +68,7 @@ struct SolverSettings {
   // momenta. 0 turns the stage off (the plain GBF method has none).
   double penetration_recovery = 0.2;  // per step, in [0, 1]
   double penetration_slop = 1e-4;     // m: overlaps this shallow are left alone
-  int recovery_passes = 20;  // most per phase (each shock level, then all contacts), fewer once converged
+  int recovery_passes = 20;  // most per group of a phase (each shock level, then all contacts), fewer once converged
 };
 
 // The contact margin and penetration slop for boxes whose smallest edge is `smallest_edge` (m):

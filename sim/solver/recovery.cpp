@@ -11,6 +11,12 @@ namespace {
 // inside the overlap recovery leaves alone, and the next step's recovery starts from it (a slop
 // of 0 never converges early: every pass runs).
 constexpr double kRecoveryConverged = 0.05;
+// A shock level's group stalls when kRecoveryStallPasses passes in a row fail to bring the largest
+// change below kRecoveryProgress of the smallest so far (a body wedged between two frozen ones,
+// whose pseudo-impulses only grow): it stops, and the phase with every body movable, which
+// follows, is the one that can free it.
+constexpr double kRecoveryProgress = 0.95;
+constexpr int kRecoveryStallPasses = 3;
 }  // namespace
 
 // The separating pseudo-velocity a contact asks for, beyond what the resolved velocities already
@@ -36,6 +42,8 @@ void PenetrationRecovery::reserve(const StepStorage& storage) {
   target_.reserve(storage.contacts());
   all_.reserve(storage.contacts());
   phase_.reserve(storage.contacts());
+  grouped_.reserve(storage.contacts());
+  groups_.reserve(storage.bodies, storage.contacts());
 }
 
 void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* shock) {
@@ -69,20 +77,40 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
   solve_phase(step, all_, nullptr, 0);
 }
 
-void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const int> group,
+void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const int> contacts,
                                       const ShockPropagation* shock, int level) {
+  collect_phase(step, contacts, shock, level);
+  group_phase(step.sb.bodies.size());
+  for (int g = 0; g < groups_.count(); ++g) solve_group(step, groups_.group(grouped_, g), shock != nullptr);
+}
+
+void PenetrationRecovery::collect_phase(const ImpulseStep& step, std::span<const int> contacts,
+                                        const ShockPropagation* shock, int level) {
   const SolverBodies& sb = step.sb;
   // With the levels, the level's own bodies (shock propagation's rule); without, every body
   // that is not fixed.
   auto moves = [&](int body) { return shock ? shock->moves(body, level) : body >= 0 && !sb.get(body).fixed; };
   // Each contact with what its passes read: which bodies move, and 1 / (n . K n) over them.
   phase_.clear();
-  for (const int k : group) {
+  for (const int k : contacts) {
     const SolverContact& c = step.contacts[k];
     const bool a_moves = moves(c.a), b_moves = moves(c.b);
     const double k_nn = c.n.dot(((a_moves ? c.Ka : Mat3::Zero()) + (b_moves ? c.Kb : Mat3::Zero())) * c.n);
-    if (k_nn > 0.0) phase_.push_back({k, a_moves, b_moves, 1.0 / k_nn});
+    if (k_nn > 0.0) phase_.push_back({k, c.a, c.b, a_moves, b_moves, 1.0 / k_nn});
   }
+}
+
+void PenetrationRecovery::group_phase(std::size_t bodies) {
+  // A contact moves the body it pushes that is not frozen; one between two of them links their
+  // groups.
+  auto moving = [](const PhaseContact& pc) {
+    return pc.a_moves ? MovingBodies{pc.a, pc.b_moves ? pc.b : -1} : MovingBodies{pc.b, -1};
+  };
+  groups_.sort(std::span<const PhaseContact>(phase_), bodies, moving, grouped_);
+}
+
+void PenetrationRecovery::solve_group(const ImpulseStep& step, std::span<const PhaseContact> group, bool stop_stalled) {
+  const SolverBodies& sb = step.sb;
   auto point_velocity = [&](int body, const Vec3& r) -> Vec3 {
     return body < 0 ? Vec3::Zero() : Vec3(pseudo_v_[body] + pseudo_omega_[body].cross(r));
   };
@@ -92,16 +120,18 @@ void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const i
     pseudo_omega_[body] += b.inv_inertia_world * r.cross(impulse);
     pushed_[body] = 1;
   };
-
+  // The group's passes until it converges: groups share no moving body, so one converged stops
+  // while another still runs.
+  PassProgress progress(kRecoveryProgress, kRecoveryStallPasses);
   for (int pass = 0; pass < step.settings().recovery_passes; ++pass) {
     double largest_change = 0.0;  // |pseudo-velocity change| dt / slop
-    for (const PhaseContact& pc : phase_) {
-      const SolverContact& c = step.contacts[pc.index];
+    for (const PhaseContact& pc : group) {
       // A contact that asks for no push and has none, between bodies nothing has pushed yet, would
       // stay at zero: skipped (most of a pile's resting contacts in the first passes).
-      if (target_[pc.index] <= 0.0 && lambda_[pc.index] == 0.0 && !(c.a >= 0 && pushed_[c.a]) &&
-          !(c.b >= 0 && pushed_[c.b]))
+      if (target_[pc.index] <= 0.0 && lambda_[pc.index] == 0.0 && !(pc.a >= 0 && pushed_[pc.a]) &&
+          !(pc.b >= 0 && pushed_[pc.b]))
         continue;
+      const SolverContact& c = step.contacts[pc.index];
       // Normal-only: lambda += (target - u_n) / (n . K n), kept >= 0 (pushes only).
       const double un = c.n.dot(point_velocity(c.a, c.ra) - point_velocity(c.b, c.rb));
       const double lambda = std::max(0.0, lambda_[pc.index] + (target_[pc.index] - un) * pc.inv_k_nn);
@@ -114,6 +144,7 @@ void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const i
       if (pc.b_moves) push(c.b, -impulse, c.rb);
     }
     if (largest_change < kRecoveryConverged) break;
+    if (stop_stalled && !progress.made(largest_change)) break;
   }
 }
 

@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "boxpile/sim/solver/body_groups.hpp"
 #include "boxpile/sim/solver/impulse_step.hpp"
 #include "boxpile/sim/solver/shock_propagation.hpp"
 #include "boxpile/sim/step_storage.hpp"
@@ -23,8 +24,9 @@ class PenetrationRecovery {
   // `penetration_recovery`) and keep every contact from ending the step deeper than the slop,
   // counting the velocities the step resolved. With `shock`'s levels (nullptr: shock propagation
   // is off) each level from the ground up with the lower ones frozen, then every contact with
-  // both bodies movable; each phase in at most `recovery_passes` sequential passes, fewer once
-  // converged. Fills pseudo_v and pseudo_omega (per body).
+  // both bodies movable; each phase as groups that share no moving body, each in at most
+  // `recovery_passes` sequential passes, fewer once converged (or, in a shock level, stalled:
+  // the phase with every body movable takes it up). Fills pseudo_v and pseudo_omega (per body).
   void run(const ImpulseStep& step, const ShockPropagation* shock);
 
   const std::vector<Vec3>& pseudo_v() const { return pseudo_v_; }
@@ -33,15 +35,24 @@ class PenetrationRecovery {
  private:
   // The separating pseudo-velocity contact `c` asks for, m/s (see the .cpp).
   static double pseudo_target(const SolverBodies& sb, const SolverContact& c, double beta, double dt);
-  // The passes over one group of contacts; bodies below `level` are frozen (none without `shock`).
-  void solve_phase(const ImpulseStep& step, std::span<const int> group, const ShockPropagation* shock, int level);
-
   // A contact of the phase being solved, with what its passes read.
   struct PhaseContact {
     int index = 0;  // in step.contacts
+    int a = 0, b = 0;  // its bodies (kGround: the ground)
     bool a_moves = false, b_moves = false;
     double inv_k_nn = 0.0;  // 1 / (n . K n) over the bodies that move
   };
+
+  // One phase: `contacts` with bodies below `level` frozen (none without `shock`), solved as groups
+  // that share no moving body, each by its passes until it converges.
+  void solve_phase(const ImpulseStep& step, std::span<const int> contacts, const ShockPropagation* shock, int level);
+  // The phase's contacts with which of their bodies move (phase_).
+  void collect_phase(const ImpulseStep& step, std::span<const int> contacts, const ShockPropagation* shock, int level);
+  // phase_ sorted into groups that share no moving body (grouped_, groups_).
+  void group_phase(std::size_t bodies);
+  // The passes over one group, until it converges, `recovery_passes` have run, or (with
+  // `stop_stalled`) it stalls: kRecoveryStallPasses passes in a row without progress.
+  void solve_group(const ImpulseStep& step, std::span<const PhaseContact> group, bool stop_stalled);
 
   std::vector<Vec3> pseudo_v_, pseudo_omega_;
   std::vector<char> pushed_;    // per body, whether a pseudo-impulse has reached it this step
@@ -49,6 +60,8 @@ class PenetrationRecovery {
   std::vector<double> target_;  // per contact, the separating pseudo-velocity it asks for, m/s
   std::vector<int> all_;        // every contact of the step
   std::vector<PhaseContact> phase_;
+  std::vector<PhaseContact> grouped_;  // phase_ by group
+  BodyGroups groups_;                  // the phase's groups
 };
 
 }  // namespace boxpile

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <span>
 #include <utility>
 
@@ -107,12 +106,7 @@ void ShockPropagation::reserve(const StepStorage& storage) {
   by_level_.reserve(storage.contacts());
   level_contacts_.reserve(storage.contacts());
   group_contacts_.reserve(storage.contacts());
-  root_.reserve(storage.bodies);
-  group_of_.reserve(storage.bodies);
-  group_start_.reserve(storage.bodies + 1);
-  group_fill_.reserve(storage.bodies);
-  group_roots_.reserve(storage.bodies);
-  contact_group_.reserve(storage.contacts());
+  groups_.reserve(storage.bodies, storage.contacts());
   active_.reserve(storage.bodies);
 }
 
@@ -123,8 +117,6 @@ void ShockPropagation::run(ImpulseStep& step) {
   // Solve level by level with e = 0; bodies below the level are frozen (infinite mass), so
   // nothing pushes back down the pile and the stack's weight is carried by the ground.
   step.resting.gather(step.sb.bodies);
-  root_.resize(step.sb.bodies.size());
-  group_of_.assign(step.sb.bodies.size(), -1);
   for (int l = 0; l <= top_; ++l) solve_level(step, l);
   step.resting.scatter(step.sb.bodies);
   step.stats().shock_levels = top_ + 1;
@@ -207,13 +199,11 @@ double ShockPropagation::frozen_target(const SolverBodyArray& sb, const SolverCo
 
 void ShockPropagation::solve_level(ImpulseStep& step, int l) {
   SolverBodyArray& sb = step.resting;
-  // Contacts that reach down to a frozen body see only the moving body's share of K. A frozen
-  // body keeps its velocity through the level, so each contact's target is set once.
+  // A frozen body keeps its velocity through the level, so each contact's target is set once.
   level_contacts_.clear();
   for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
-    SolverContact& c = step.contacts[by_level_[k]];
+    const SolverContact& c = step.contacts[by_level_[k]];
     const bool a_moves = moves(c.a, l), b_moves = moves(c.b, l);
-    if (!(a_moves && b_moves)) set_collision_matrix(c, a_moves, b_moves);
     level_contacts_.push_back({by_level_[k], a_moves, b_moves, allow_gap(c, frozen_target(sb, c, l), step.dt())});
   }
   group_level_contacts(step);
@@ -232,7 +222,7 @@ void ShockPropagation::solve_groups(ImpulseStep& step) {
   const int passes = step.settings().shock_passes;
   const PassContext context(step);
   const double direct_residual = solve_sticking_groups(step);
-  Progress level;
+  PassProgress level(kShockProgress, kShockStallPasses);
   bool stalled = false;
   int pass = 0;
   while (pass < passes && !active_.empty()) {
@@ -280,72 +270,37 @@ void ShockPropagation::solve_groups(ImpulseStep& step) {
 double ShockPropagation::solve_sticking_groups(ImpulseStep& step) {
   // Each group of bodies on frozen supports solved directly when every touching point can stick
   // (sticking_solve.hpp); the groups it declines stay active for the passes.
-  const int groups = static_cast<int>(group_start_.size()) - 1;
+  const int groups = groups_.count();
   double worst = -1.0;
   active_.clear();
   for (int g = 0; g < groups; ++g) {
     double residual = 0.0;
     const StickingOutcome outcome =
         solve_sticking_group(step.resting, step.contacts, group(g), step.friction(), step.counters(), residual);
-    if (outcome == StickingOutcome::solved)
+    if (outcome == StickingOutcome::solved) {
       worst = std::max(worst, residual);
-    else
+    } else {
+      set_frozen_collision_matrices(step, group(g));
       active_.push_back(g);
+    }
   }
   return worst;
 }
 
-bool ShockPropagation::Progress::made(double change) {
-  // A pass makes progress when its change falls below kShockProgress of the smallest so far; after
-  // kShockStallPasses passes in a row without, the passes are cycling and more would repeat them.
-  if (change < kShockProgress * lowest_change) {
-    lowest_change = change;
-    passes_without_progress = 0;
-    return true;
-  }
-  return ++passes_without_progress < kShockStallPasses;
+void ShockPropagation::set_frozen_collision_matrices(ImpulseStep& step, std::span<const LevelContact> contacts) {
+  // Contacts that reach down to a frozen body see only the moving body's share of K. Only the
+  // passes read K (the direct solve does not), so they are set only for the groups it declines.
+  for (const LevelContact& lc : contacts)
+    if (!(lc.a_moves && lc.b_moves)) set_collision_matrix(step.contacts[lc.index], lc.a_moves, lc.b_moves);
 }
 
 void ShockPropagation::group_level_contacts(const ImpulseStep& step) {
-  // The level's moving bodies joined by the contacts between two of them (union-find); each
-  // contact goes to the group of its moving body, in the order of the contact set.
-  auto mover = [](const LevelContact& lc, const SolverContact& c) { return lc.a_moves ? c.a : c.b; };
-  for (const LevelContact& lc : level_contacts_) {
+  // A contact moves the level's body it touches; one between two of them links their groups.
+  auto moving = [&](const LevelContact& lc) {
     const SolverContact& c = step.contacts[lc.index];
-    if (lc.a_moves) root_[c.a] = c.a;
-    if (lc.b_moves) root_[c.b] = c.b;
-  }
-  auto find = [&](int body) {
-    while (root_[body] != body) body = root_[body] = root_[root_[body]];
-    return body;
+    return lc.a_moves ? MovingBodies{c.a, lc.b_moves ? c.b : -1} : MovingBodies{c.b, -1};
   };
-  for (const LevelContact& lc : level_contacts_) {
-    if (!(lc.a_moves && lc.b_moves)) continue;
-    const SolverContact& c = step.contacts[lc.index];
-    const int ra = find(c.a), rb = find(c.b);
-    if (ra != rb) root_[std::max(ra, rb)] = std::min(ra, rb);
-  }
-  // Counting sort by group: each root numbered at its first contact, each contact's group noted
-  // (one find per contact).
-  group_start_.assign(1, 0);
-  group_roots_.clear();
-  contact_group_.clear();
-  for (const LevelContact& lc : level_contacts_) {
-    const int root = find(mover(lc, step.contacts[lc.index]));
-    if (group_of_[root] < 0) {
-      group_of_[root] = static_cast<int>(group_roots_.size());
-      group_roots_.push_back(root);
-      group_start_.push_back(0);
-    }
-    contact_group_.push_back(group_of_[root]);
-    ++group_start_[group_of_[root] + 1];
-  }
-  for (std::size_t g = 1; g < group_start_.size(); ++g) group_start_[g] += group_start_[g - 1];
-  group_contacts_.resize(level_contacts_.size());
-  group_fill_.assign(group_start_.begin(), group_start_.end() - 1);
-  for (std::size_t k = 0; k < level_contacts_.size(); ++k)
-    group_contacts_[static_cast<std::size_t>(group_fill_[contact_group_[k]]++)] = level_contacts_[k];
-  for (const int root : group_roots_) group_of_[root] = -1;
+  groups_.sort(std::span<const LevelContact>(level_contacts_), step.sb.bodies.size(), moving, group_contacts_);
 }
 
 }  // namespace boxpile

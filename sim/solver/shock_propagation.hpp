@@ -2,10 +2,10 @@
 #pragma once
 
 #include <algorithm>
-#include <limits>
 #include <span>
 #include <vector>
 
+#include "boxpile/sim/solver/body_groups.hpp"
 #include "boxpile/sim/solver/impulse_step.hpp"
 #include "boxpile/sim/step_storage.hpp"
 
@@ -59,16 +59,10 @@ class ShockPropagation {
   // sticks (sticking_solve.hpp); the rest become the passes' active groups. Returns the largest residual of a direct
   // solve (m/s), or -1 when none was solved.
   double solve_sticking_groups(ImpulseStep& step);
+  // Sets K and its inverse of the contacts that reach a frozen body to the moving body's share.
+  static void set_frozen_collision_matrices(ImpulseStep& step, std::span<const LevelContact> contacts);
   // The contacts of group g of the level being solved.
-  std::span<const LevelContact> group(int g) const {
-    return {group_contacts_.data() + group_start_[g], group_contacts_.data() + group_start_[g + 1]};
-  }
-  // Whether the passes of a level still converge.
-  struct Progress {
-    double lowest_change = std::numeric_limits<double>::infinity();  // the smallest so far
-    int passes_without_progress = 0;
-    bool made(double change);  // false once the passes have stalled
-  };
+  std::span<const LevelContact> group(int g) const { return groups_.group(group_contacts_, g); }
 
   int level_of(int body) const { return body < 0 ? -1 : level_[body]; }
   // A contact belongs to the higher of its two bodies' levels.
@@ -84,11 +78,7 @@ class ShockPropagation {
   std::vector<int> level_start_;
   std::vector<LevelContact> level_contacts_;
   std::vector<LevelContact> group_contacts_;  // level_contacts_ by group
-  std::vector<int> root_;                     // per body, union-find parent within the level
-  std::vector<int> group_of_;                 // per root body, its group (-1 between levels)
-  std::vector<int> group_start_, group_fill_;
-  std::vector<int> group_roots_;    // per group of the level, its root body
-  std::vector<int> contact_group_;  // per contact of the level (level_contacts_), its group
+  BodyGroups groups_;                         // the level's groups
   std::vector<int> active_;  // the groups of the level not converged yet
 };
 

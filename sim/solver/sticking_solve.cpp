@@ -70,24 +70,35 @@ bool in_cone(const SolverContact& c, const Vec3& J) {
   return jn >= 0.0 && norm_within((J - jn * c.n).squaredNorm(), c.friction * jn);
 }
 
-// The group's moving bodies, or why the solve does not take the group.
+// The group's moving bodies, or why the solve does not take the group. Everything it declines
+// here is decided from the contacts' bodies and depths alone, before any velocity is read: a
+// declined group (half of a tumbling pile's) costs one look at each of its contacts.
 StickingOutcome collect_bodies(const std::vector<SolverContact>& contacts,
                                std::span<const ShockPropagation::LevelContact> group,
                                std::array<BodyPlan, kStickingMaxBodies>& plans, int& count) {
   if (group.size() > static_cast<std::size_t>(kStickingMaxPoints)) return StickingOutcome::too_large;
   count = 0;
+  std::array<int, kStickingMaxBodies> touching{};  // per body, its points on a body that does not move
+  // The body's slot, or -1 when the group has more bodies than the solve holds.
   auto add = [&](int body) {
     for (int i = 0; i < count; ++i)
-      if (plans[static_cast<std::size_t>(i)].body == body) return true;
-    if (count == kStickingMaxBodies) return false;
-    plans[static_cast<std::size_t>(count++)].body = body;
-    return true;
+      if (plans[static_cast<std::size_t>(i)].body == body) return i;
+    if (count == kStickingMaxBodies) return -1;
+    plans[static_cast<std::size_t>(count)].body = body;
+    touching[static_cast<std::size_t>(count)] = 0;
+    return count++;
   };
   for (const ShockPropagation::LevelContact& lc : group) {
     const SolverContact& c = contacts[static_cast<std::size_t>(lc.index)];
     if (c.friction <= 0.0) return StickingOutcome::frictionless;
-    if ((lc.a_moves && !add(c.a)) || (lc.b_moves && !add(c.b))) return StickingOutcome::too_large;
+    const int slot_a = lc.a_moves ? add(c.a) : 0;
+    const int slot_b = lc.b_moves ? add(c.b) : 0;
+    if (slot_a < 0 || slot_b < 0) return StickingOutcome::too_large;
+    // A touching point as collect_points marks it: on a body that does not move, depth >= 0.
+    if (lc.a_moves != lc.b_moves && c.depth >= 0.0) ++touching[static_cast<std::size_t>(lc.a_moves ? slot_a : slot_b)];
   }
+  for (int i = 0; i < count; ++i)
+    if (touching[static_cast<std::size_t>(i)] < kStickingMinPoints) return StickingOutcome::too_few_points;
   return StickingOutcome::solved;
 }
 
@@ -123,8 +134,7 @@ StickingOutcome solve_body(const SolverBodyArray& sb, std::span<const Point> pts
                            std::array<Vec3, kStickingMaxPoints>& totals, double& worst) {
   // The body's velocity y = (v, omega) that brings every touching point to its wanted velocity,
   // by least squares: G y = sum J_i^T wanted_i, G = sum J_i^T J_i.
-  const auto touching = std::count_if(pts.begin(), pts.end(), [](const Point& p) { return p.touching; });
-  if (touching < kStickingMinPoints) return StickingOutcome::too_few_points;
+  // (collect_bodies has checked that the body has kStickingMinPoints touching points.)
   Mat6 G = Mat6::Zero();
   Vec6 rhs = Vec6::Zero();
   for (const Point& p : pts) {
