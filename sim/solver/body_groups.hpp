@@ -16,6 +16,10 @@ namespace boxpile {
 struct MovingBodies {
   int first = 0;
   int second = -1;
+  // The moving bodies of a contact between bodies a and b, of which at least one moves.
+  static MovingBodies of(int a, int b, bool a_moves, bool b_moves) {
+    return a_moves ? MovingBodies{a, b_moves ? b : -1} : MovingBodies{b, -1};
+  }
 };
 
 // Groups of a phase's contacts: two contacts are in one group when a chain of contacts between

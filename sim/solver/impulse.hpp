@@ -111,6 +111,10 @@ inline bool norm_within(double squared, double limit) {
   return std::sqrt(squared) <= limit;
 }
 
+// Whether an impulse with normal part jn and tangential part jt lies in the friction cone of
+// coefficient mu (jn >= 0, |jt| <= mu jn), decided as norm_within decides it.
+inline bool within_cone(double jn, const Vec3& jt, double mu) { return jn >= 0.0 && norm_within(jt.squaredNorm(), mu * jn); }
+
 // Whether every component is zero (+0 or -0), exactly: Eigen's isZero() allows 1e-12.
 inline bool is_exact_zero(const Vec3& v) { return v.x() == 0.0 && v.y() == 0.0 && v.z() == 0.0; }
 
@@ -152,7 +156,7 @@ inline bool stays_unloaded(const SolverContact& c, const Vec3& u, double un, dou
   Vec3 J = J_old + c.Kinv * (target_un * n - u);
   const double jn = J.dot(n);
   const Vec3 jt = J - jn * n;
-  if (jn >= 0.0 && norm_within(jt.squaredNorm(), c.friction * jn)) {
+  if (within_cone(jn, jt, c.friction)) {
     c.accumulated = J;
     return J - J_old;
   }

@@ -103,9 +103,7 @@ void PenetrationRecovery::collect_phase(const ImpulseStep& step, std::span<const
 void PenetrationRecovery::group_phase(std::size_t bodies) {
   // A contact moves the body it pushes that is not frozen; one between two of them links their
   // groups.
-  auto moving = [](const PhaseContact& pc) {
-    return pc.a_moves ? MovingBodies{pc.a, pc.b_moves ? pc.b : -1} : MovingBodies{pc.b, -1};
-  };
+  auto moving = [](const PhaseContact& pc) { return MovingBodies::of(pc.a, pc.b, pc.a_moves, pc.b_moves); };
   groups_.sort(std::span<const PhaseContact>(phase_), bodies, moving, grouped_);
 }
 

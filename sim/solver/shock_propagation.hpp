@@ -56,8 +56,8 @@ class ShockPropagation {
   // The level's passes over its groups, each group until it converges, the level until it stalls.
   void solve_groups(ImpulseStep& step);
   // The level's groups of bodies on frozen supports solved directly where every touching point
-  // sticks (sticking_solve.hpp); the rest become the passes' active groups. Returns the largest residual of a direct
-  // solve (m/s), or -1 when none was solved.
+  // sticks (sticking_solve.hpp); the rest become the passes' active groups. Returns the largest
+  // residual of a direct solve (m/s), or -1 when none was solved.
   double solve_sticking_groups(ImpulseStep& step);
   // Sets K and its inverse of the contacts that reach a frozen body to the moving body's share.
   static void set_frozen_collision_matrices(ImpulseStep& step, std::span<const LevelContact> contacts);

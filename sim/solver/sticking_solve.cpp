@@ -64,10 +64,17 @@ Vec6 generalised(const Mat3& W, const Vec3& q) {
 // J y = y_lin + W y_ang: the velocity of the point under the body velocity y.
 Vec3 at_point(const Mat3& W, const Vec6& y) { return y.head<3>() + W * y.tail<3>(); }
 
-// Whether a total impulse on A lies in the friction cone (J_n >= 0, |J_t| <= mu J_n).
+// Whether a total impulse on A lies in the contact's friction cone, as resting_impulse decides it.
 bool in_cone(const SolverContact& c, const Vec3& J) {
   const double jn = J.dot(c.n);
-  return jn >= 0.0 && norm_within((J - jn * c.n).squaredNorm(), c.friction * jn);
+  return within_cone(jn, J - jn * c.n, c.friction);
+}
+
+// Whether a point of the group sticks under the hypothesis: it joins a moving body to one that
+// does not move (frozen, fixed or the ground) and touches it (depth >= 0). A point with a gap, or
+// between two moving bodies, carries no impulse instead.
+bool touches_support(const ShockPropagation::LevelContact& lc, const SolverContact& c) {
+  return lc.a_moves != lc.b_moves && c.depth >= 0.0;
 }
 
 // The group's moving bodies, or why the solve does not take the group. Everything it declines
@@ -94,8 +101,7 @@ StickingOutcome collect_bodies(const std::vector<SolverContact>& contacts,
     const int slot_a = lc.a_moves ? add(c.a) : 0;
     const int slot_b = lc.b_moves ? add(c.b) : 0;
     if (slot_a < 0 || slot_b < 0) return StickingOutcome::too_large;
-    // A touching point as collect_points marks it: on a body that does not move, depth >= 0.
-    if (lc.a_moves != lc.b_moves && c.depth >= 0.0) ++touching[static_cast<std::size_t>(lc.a_moves ? slot_a : slot_b)];
+    if (touches_support(lc, c)) ++touching[static_cast<std::size_t>(lc.a_moves ? slot_a : slot_b)];
   }
   for (int i = 0; i < count; ++i)
     if (touching[static_cast<std::size_t>(i)] < kStickingMinPoints) return StickingOutcome::too_few_points;
@@ -118,7 +124,7 @@ int collect_points(const SolverBodyArray& sb, std::vector<SolverContact>& contac
     p.side = as_a ? 1.0 : -1.0;
     p.W = as_a ? &c.Wa : &c.Wb;
     p.link = lc.a_moves && lc.b_moves;
-    p.touching = !p.link && c.depth >= 0.0;
+    p.touching = touches_support(lc, c);
     p.wanted = Vec3::Zero();
     if (p.link) continue;
     // u = v_A - v_B = target n: the moving point's velocity is the frozen one's plus side target n.
