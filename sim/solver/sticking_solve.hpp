@@ -5,14 +5,12 @@
 // Jenga layer of three blocks lying side by side on the layer below.
 //
 // The passes solve such a group by projected Gauss-Seidel, some 15 passes to 1e-12 m/s. When every
-// touching point sticks, the answer is known in closed form: for a body on three or more points,
-// its velocity that brings its points to their targets, by least squares, and the smallest
-// impulses that give the body that velocity; for a body on one or two points (on a corner, on an
-// edge), the smallest impulses that bring them to their targets, from the points' own system. The
-// solve checks that this is a solution of what the passes solve (every touching point at its
-// target, every impulse in its friction cone, a point with a gap or between two moving bodies free
-// of impulse, not approaching faster than it may and left free by a pass) and otherwise leaves the
-// group to the passes. docs/solver.md, "Sticking groups solved directly", has the derivation.
+// touching point sticks, the answer is known in closed form: each body's velocity that brings its
+// points to their targets, by least squares, and the smallest impulses that give the body that
+// velocity. The solve checks that this is a solution of what the passes solve (every touching
+// point at its target, every impulse in its friction cone, a point with a gap or between two moving
+// bodies free of impulse and not approaching faster than it may) and otherwise leaves the group to
+// the passes. docs/solver.md, "Sticking groups solved directly", has the derivation.
 #pragma once
 
 #include <cstdint>
@@ -30,11 +28,11 @@ enum class StickingOutcome : std::uint8_t {
   solved,
   too_large,        // more bodies or points than the solve holds: the passes solve it
   frictionless,     // a point without friction: the passes solve it (no sticking to ask for)
+  too_few_points,   // a body with fewer than three touching points: it can turn or slide freely
   ill_conditioned,  // a body's touching points are (nearly) on one line
   off_target,       // the points' targets ask for no single rigid motion (a sliding or pushed box)
   outside_cone,     // sticking needs an impulse that pulls or leaves the friction cone
-  gap_closes,       // a point with a gap, or between two moving bodies, would approach too fast or take
-                    // an impulse in a pass
+  gap_closes,       // a point with a gap, or between two moving bodies, would approach too fast
 };
 
 // Tries the direct solve of one group of a shock-propagation level. On `solved` it has set each
