@@ -184,13 +184,14 @@ TEST_CASE("a shock-propagation level stops once converged, or once its passes st
 }
 
 TEST_CASE("a point told unloaded is one the full resting update would leave without impulse", "[solver]") {
-  // stays_unloaded decides from K^-T n . (target n - u) what the update computes as
+  // stays_unloaded decides from (K^-1 n) . (target n - u) what the update computes as
   // n . (K^-1 (target n - u)): for every point it decides, the update's own normal part must pull
   // (j_n < 0, so the update ends on the cone's apex), and a point that slid must already meet its
   // target. Half the samples are the Jenga tower's case: two equal blocks lying square on each
   // other (turned by rounding-sized angles), the point midway between their centres along the
   // normal, so that their shares of K's normal-tangent coupling cancel and what is left of it is
-  // rounding noise, and a velocity almost all tangential. There K^-1 n and K^-T n differ in sign.
+  // rounding noise, and a velocity almost all tangential. There a K^-1 that is not exactly
+  // symmetric gives K^-1 n and K^-T n of different signs (set_collision_matrix makes it symmetric).
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   auto random_vec = [&] { return Vec3(unit(rng), unit(rng), unit(rng)); };
