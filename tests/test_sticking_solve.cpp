@@ -290,6 +290,13 @@ TEST_CASE("the normal matrix's Schur solve gives the 6x6 LDLT's solution and dec
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   using Vec6 = PointNormalMatrix::Vec6;
   using Mat6 = Eigen::Matrix<double, 6, 6>;
+  // A point at r added to the solve's G and to the reference: J^T J, J = [E, [r]x^T].
+  auto add_point = [](PointNormalMatrix& G, Mat6& full, const Vec3& r) {
+    G.add(r);
+    Eigen::Matrix<double, 3, 6> J;
+    J << Mat3::Identity(), cross_matrix(r).transpose();
+    full += J.transpose() * J;
+  };
   for (int k = 0; k < 1000; ++k) {
     const int count = 3 + k % 14;
     const Vec3 centre(unit(rng), unit(rng), unit(rng));
@@ -297,12 +304,7 @@ TEST_CASE("the normal matrix's Schur solve gives the 6x6 LDLT's solution and dec
     PointNormalMatrix G;
     Mat6 full = Mat6::Zero();
     for (int i = 0; i < count; ++i) {
-      const Vec3 r = centre + half.cwiseProduct(Vec3(unit(rng), unit(rng), 0.0));
-      const Mat3 W = cross_matrix(r).transpose();
-      G.add(r);
-      Eigen::Matrix<double, 3, 6> J;
-      J << Mat3::Identity(), W;
-      full += J.transpose() * J;
+      add_point(G, full, centre + half.cwiseProduct(Vec3(unit(rng), unit(rng), 0.0)));
     }
     REQUIRE(G.factor(1e-9));
     const Vec6 r = Vec6::Random();
@@ -321,14 +323,7 @@ TEST_CASE("the normal matrix's Schur solve gives the 6x6 LDLT's solution and dec
   for (const Vec3& direction : {Vec3(1.0, 0.0, 0.0), Vec3(0.6, 0.8, 0.0), Vec3(0.3, -0.2, 0.9).normalized()}) {
     PointNormalMatrix G;
     Mat6 full = Mat6::Zero();
-    for (const double s : {-0.4, -0.1, 0.25, 0.5}) {
-      const Vec3 r = Vec3(0.1, 0.2, -0.3) + s * direction;
-      const Mat3 W = cross_matrix(r).transpose();
-      G.add(r);
-      Eigen::Matrix<double, 3, 6> J;
-      J << Mat3::Identity(), W;
-      full += J.transpose() * J;
-    }
+    for (const double s : {-0.4, -0.1, 0.25, 0.5}) add_point(G, full, Vec3(0.1, 0.2, -0.3) + s * direction);
     CHECK_FALSE(G.factor(1e-9));
     const Vec6 pivots = Eigen::LDLT<Mat6>(full).vectorD().cwiseAbs();
     CHECK_FALSE(pivots.minCoeff() > 1e-9 * pivots.maxCoeff());
