@@ -17,36 +17,38 @@ constexpr double kSlideDirectionSpeed = 1e-12;
 }  // namespace
 
 Mat3 collision_matrix_share(const RigidBody& body, const Vec3& r) {
-  // (1/m) E - [r]x I^-1 [r]x, written out: each row and column of [r]x holds one zero, so every
-  // entry of the two products is a sum of two terms, not three. Adding the third, a zero, changes
-  // no nonzero sum, so the entries are those of the two 3x3 products Eigen would form (bit for
-  // bit but for the sign of an exact zero), with 36 multiplications instead of 54.
+  // (1/m) E - [r]x I^-1 [r]x, written out. I^-1 is symmetric, so the share is too: only its upper
+  // triangle is formed (the lower one mirrors it), from the eight entries of T = [r]x I^-1 it
+  // reads. Each row and column of [r]x holds one zero, so every entry of the two products is a sum
+  // of two terms: 28 multiplications where the two 3x3 products take 54.
   const Mat3& I = body.inv_inertia_world;
   const double x = r.x(), y = r.y(), z = r.z();
-  Mat3 T;  // [r]x I^-1
-  for (int j = 0; j < 3; ++j) {
-    T(0, j) = -z * I(1, j) + y * I(2, j);
-    T(1, j) = z * I(0, j) + -x * I(2, j);
-    T(2, j) = -y * I(0, j) + x * I(1, j);
-  }
-  Mat3 K;  // (1/m) E - T [r]x
-  for (int i = 0; i < 3; ++i) {
-    K(i, 0) = (i == 0 ? body.inv_mass : 0.0) - (T(i, 1) * z + T(i, 2) * -y);
-    K(i, 1) = (i == 1 ? body.inv_mass : 0.0) - (T(i, 0) * -z + T(i, 2) * x);
-    K(i, 2) = (i == 2 ? body.inv_mass : 0.0) - (T(i, 0) * y + T(i, 1) * -x);
-  }
+  // T = [r]x I^-1: rows 0 and 1 whole, row 2's first two entries.
+  const double t00 = -z * I(1, 0) + y * I(2, 0), t01 = -z * I(1, 1) + y * I(2, 1), t02 = -z * I(1, 2) + y * I(2, 2);
+  const double t10 = z * I(0, 0) + -x * I(2, 0), t11 = z * I(0, 1) + -x * I(2, 1), t12 = z * I(0, 2) + -x * I(2, 2);
+  const double t20 = -y * I(0, 0) + x * I(1, 0), t21 = -y * I(0, 1) + x * I(1, 1);
+  // (1/m) E - T [r]x, the upper triangle.
+  const double m = body.inv_mass;
+  const double k00 = m - (t01 * z + t02 * -y), k01 = -(t00 * -z + t02 * x), k02 = -(t00 * y + t01 * -x);
+  const double k11 = m - (t10 * -z + t12 * x), k12 = -(t10 * y + t11 * -x);
+  const double k22 = m - (t20 * y + t21 * -x);
+  Mat3 K;
+  K << k00, k01, k02,
+       k01, k11, k12,
+       k02, k12, k22;
   return K;
 }
 
 void set_collision_matrix(SolverContact& c, bool a_moves, bool b_moves) {
   c.K = (a_moves ? c.Ka : Mat3::Zero()) + (b_moves ? c.Kb : Mat3::Zero());
-  // K is symmetric positive definite whenever one moving body has finite mass.
-  c.Kinv = c.K.inverse();
-  // Transposed: n . (K^-1 x) = (K^-T n) . x summed over the same products. The computed inverse is
-  // not exactly symmetric, and where its normal-tangent coupling is rounding noise the two
-  // orientations differ in sign.
-  c.Kinv_n = c.Kinv.transpose() * c.n;
-  c.Kinv_n_size = c.Kinv.cwiseAbs().transpose() * c.n.cwiseAbs();
+  // K is symmetric positive definite whenever one moving body has finite mass. Its inverse is
+  // taken as symmetric (from K's upper triangle; the lower one differs by rounding), so
+  // n . (K^-1 x) and (K^-1 n) . x sum the same products, grouped differently: they agree to
+  // rounding, where with a general inverse a normal-tangent coupling of rounding size could
+  // differ in sign between the two orientations.
+  c.Kinv = symmetric_inverse(c.K);
+  c.Kinv_n = c.Kinv * c.n;
+  c.Kinv_n_size = c.Kinv.cwiseAbs() * c.n.cwiseAbs();
 }
 
 Vec3 newton_coulomb_impulse(const SolverContact& c, const Vec3& u, double e, bool friction,

@@ -44,8 +44,8 @@ struct SolverContact {
   // propagation the share of the bodies that still move. Set once per phase, not per impulse.
   Mat3 K = Mat3::Zero();
   Mat3 Kinv = Mat3::Zero();
-  // K^-T n and |K^-1|^T |n|, set with K: the normal part of a sticking impulse is
-  // Kinv_n . (target n - u), and Kinv_n_size . |target n - u| bounds the terms it sums
+  // K^-1 n and |K^-1| |n| (Kinv is exactly symmetric), set with K: the normal part of a sticking
+  // impulse is Kinv_n . (target n - u), and Kinv_n_size . |target n - u| bounds the terms it sums
   // (stays_unloaded).
   Vec3 Kinv_n = Vec3::Zero();
   Vec3 Kinv_n_size = Vec3::Zero();

@@ -1,10 +1,30 @@
 #include "boxpile/sim/solver/impulse_method.hpp"
 
+#include <algorithm>
+
 #include "boxpile/sim/solver/collision_loop.hpp"
 #include "boxpile/sim/solver/contact_loop.hpp"
 #include "boxpile/sim/solver/integrate.hpp"
 
 namespace boxpile {
+
+namespace {
+
+// What every contact of a pair of bodies shares: the penetration left alone (relative to the pair's
+// boxes) and the combined material.
+struct PairTerms {
+  static constexpr int kNone = kGround - 1;  // no body has this index: no pair yet
+  int a = kNone, b = kNone;
+  double slop = 0.0, friction = 0.0, restitution = 0.0;
+};
+
+PairTerms pair_terms(const SolverSettings& s, int body_a, int body_b, const RigidBody& a, const RigidBody& b) {
+  const Material m = combine_materials(a.material, b.material);
+  return {body_a, body_b, penetration_slop_for(s, std::min(smallest_edge(a), smallest_edge(b))), m.friction,
+          m.restitution};
+}
+
+}  // namespace
 
 ImpulseMethod::ImpulseMethod(std::size_t body_count) {
   start_v_.resize(body_count);
@@ -62,9 +82,12 @@ void ImpulseMethod::step(StepContext& ctx) {
 
 void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
   solver_contacts_.clear();
+  // A pair's contacts come one after another: its slop and material are found once per pair.
+  PairTerms pair;
   for (const BodyContact& bc : ctx.contacts) {
     const RigidBody& a = ctx.bodies[bc.body_a];
     const RigidBody& b = bc.body_b == kGround ? ctx.ground : ctx.bodies[bc.body_b];
+    if (bc.body_a != pair.a || bc.body_b != pair.b) pair = pair_terms(ctx.scene.solver, bc.body_a, bc.body_b, a, b);
     // Filled where it stays: a SolverContact is some 600 bytes, and copying each one into the
     // set cost a quarter of this function (perf, Jenga tower).
     SolverContact& c = solver_contacts_.emplace_back();
@@ -76,10 +99,9 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
     c.Wa = cross_matrix(c.ra).transpose();
     c.Wb = cross_matrix(c.rb).transpose();
     c.depth = bc.contact.depth;
-    c.slop = penetration_slop_for(ctx.scene.solver, std::min(smallest_edge(a), smallest_edge(b)));
-    const Material m = combine_materials(a.material, b.material);
-    c.friction = m.friction;
-    c.restitution = m.restitution;
+    c.slop = pair.slop;
+    c.friction = pair.friction;
+    c.restitution = pair.restitution;
     if (!a.fixed) c.Ka = collision_matrix_share(a, c.ra);
     if (!b.fixed) c.Kb = collision_matrix_share(b, c.rb);
     set_collision_matrix(c, !a.fixed, !b.fixed);
