@@ -17,7 +17,6 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/solver/impulse.hpp"
 #include "boxpile/sim/solver/impulse_step.hpp"
-#include "boxpile/sim/solver/normal_matrix.hpp"
 #include "boxpile/sim/solver/sticking_solve.hpp"
 #include "boxpile/sim/solver/solver_body.hpp"
 #include "boxpile/sim/world.hpp"
@@ -277,55 +276,4 @@ TEST_CASE("a resting stack's shock levels are each solved directly in one pass",
   CHECK(st.shock_pass_count == 1);
   CHECK(st.shock_change[0] <= kRestingConverged);
   for (const RigidBody& b : w.bodies()) CHECK(b.v.norm() < 1e-12);
-}
-
-TEST_CASE("the normal matrix's Schur solve gives the 6x6 LDLT's solution and declines points on a line",
-          "[solver][sticking]") {
-  // Random sets of 3 to 16 points spread over a box's face (as a box's corners and edge points
-  // touch), up to 1 m from the centre of mass: G y = r solved through the 3x3 Schur complement
-  // agrees with Eigen's pivoted 6x6 LDLT of the same G to 1e-14 times G's condition number
-  // (both solves err by up to cond * eps: three random points may lie nearly on a line), leaves a
-  // residual of rounding size, and its pivots' product is G's determinant.
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  using Vec6 = PointNormalMatrix::Vec6;
-  using Mat6 = Eigen::Matrix<double, 6, 6>;
-  // A point at r added to the solve's G and to the reference: J^T J, J = [E, [r]x^T].
-  auto add_point = [](PointNormalMatrix& G, Mat6& full, const Vec3& r) {
-    G.add(r);
-    Eigen::Matrix<double, 3, 6> J;
-    J << Mat3::Identity(), cross_matrix(r).transpose();
-    full += J.transpose() * J;
-  };
-  for (int k = 0; k < 1000; ++k) {
-    const int count = 3 + k % 14;
-    const Vec3 centre(unit(rng), unit(rng), unit(rng));
-    const Vec3 half(0.05 + std::abs(unit(rng)), 0.05 + std::abs(unit(rng)), 0.0);
-    PointNormalMatrix G;
-    Mat6 full = Mat6::Zero();
-    for (int i = 0; i < count; ++i) {
-      add_point(G, full, centre + half.cwiseProduct(Vec3(unit(rng), unit(rng), 0.0)));
-    }
-    REQUIRE(G.factor(1e-9));
-    const Vec6 r = Vec6::Random();
-    const Eigen::LDLT<Mat6> ldlt(full);
-    const Vec6 expected = ldlt.solve(r);
-    const Vec6 got = G.solve(r);
-    const Eigen::SelfAdjointEigenSolver<Mat6> eig(full);
-    const double cond = eig.eigenvalues().maxCoeff() / eig.eigenvalues().minCoeff();
-    INFO("sample " << k << ": " << count << " points, condition " << cond);
-    CHECK((got - expected).norm() <= 1e-14 * cond * expected.norm());
-    CHECK((full * got - r).norm() <= 1e-12 * r.norm() * full.norm());
-    CHECK(G.pivots().prod() == Approx(full.determinant()).epsilon(1e-9));
-  }
-  // Points on one line (a box resting on an edge) leave one velocity free: declined, as the 6x6
-  // LDLT's pivots decline them.
-  for (const Vec3& direction : {Vec3(1.0, 0.0, 0.0), Vec3(0.6, 0.8, 0.0), Vec3(0.3, -0.2, 0.9).normalized()}) {
-    PointNormalMatrix G;
-    Mat6 full = Mat6::Zero();
-    for (const double s : {-0.4, -0.1, 0.25, 0.5}) add_point(G, full, Vec3(0.1, 0.2, -0.3) + s * direction);
-    CHECK_FALSE(G.factor(1e-9));
-    const Vec6 pivots = Eigen::LDLT<Mat6>(full).vectorD().cwiseAbs();
-    CHECK_FALSE(pivots.minCoeff() > 1e-9 * pivots.maxCoeff());
-  }
 }

@@ -1,27 +1,27 @@
 #include "boxpile/sim/solver/sticking_solve.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "boxpile/sim/solver/impulse_step.hpp"
-#include "boxpile/sim/solver/normal_matrix.hpp"
 
 namespace boxpile {
 
 namespace {
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
 
 // A touching point's velocity must end this close to its target, and a free point may approach at
 // most this much faster than its target allows (m/s): the passes leave a group once no impulse
 // changes a velocity by more than kRestingConverged, so a direct solve held to the same bound is as
-// converged as they are; the rounding of the solve is some 1e-16 m/s per m/s of velocity.
+// converged as they are; the rounding of the 6x6 solve is some 1e-16 m/s per m/s of velocity.
 constexpr double kStickingResidual = kRestingConverged;
-// Smallest pivot of a body's 6x6 normal matrix (normal_matrix.hpp), relative to its largest, for its
-// points to fix its six velocities: points on one line leave a pivot of rounding size (1e-16
-// relative), while p points spread over a face leave pivots p and p spread^2 (in m^2: a Jenga
-// block's face, 1e-4 per point), far above this.
+// Smallest pivot of a body's 6x6 normal matrix, relative to its largest, for its points to fix its
+// six velocities: points on one line leave a pivot of rounding size (1e-16 relative), while points
+// spread over a face leave pivots of the order of (spread / lever)^2, far above this.
 constexpr double kStickingPivotRatio = 1e-9;
 // At most this many bodies and points in a group (a Jenga layer is three blocks and some 48
 // points): larger groups go to the passes, so the solve needs no heap.
@@ -30,17 +30,15 @@ constexpr int kStickingMaxPoints = 64;
 // A body needs this many touching points for its velocity to be fixed by them.
 constexpr int kStickingMinPoints = 3;
 
-// One point of a body as the solve sees it: its place in the group, its offset r from the body's
-// centre of mass and W = [r]x^T there, the sign of the impulse on the body (+1 when it is A), the
-// velocity the point must reach, and whether it touches a body that does not move (depth >= 0: it
-// sticks), has a gap to one (it carries no impulse), or links two moving bodies (it carries no
-// impulse either). Left
+// One point of a body as the solve sees it: its place in the group, the body's W = [r]x^T there,
+// the sign of the impulse on the body (+1 when it is A), the velocity the point must reach, and
+// whether it touches a body that does not move (depth >= 0: it sticks), has a gap to one (it
+// carries no impulse), or links two moving bodies (it carries no impulse either). Left
 // uninitialised until filled: a group's array of them is set up for every group of every level.
 struct Point {
   int k;
   SolverContact* c;
   const Mat3* W;
-  const Vec3* r;
   double side;
   Vec3 wanted;
   bool touching;
@@ -125,7 +123,6 @@ int collect_points(const SolverBodyArray& sb, std::vector<SolverContact>& contac
     p.c = &c;
     p.side = as_a ? 1.0 : -1.0;
     p.W = as_a ? &c.Wa : &c.Wb;
-    p.r = as_a ? &c.ra : &c.rb;
     p.link = lc.a_moves && lc.b_moves;
     p.touching = touches_support(lc, c);
     p.wanted = Vec3::Zero();
@@ -144,15 +141,22 @@ StickingOutcome solve_body(const SolverBodyArray& sb, std::span<const Point> pts
   // The body's velocity y = (v, omega) that brings every touching point to its wanted velocity,
   // by least squares: G y = sum J_i^T wanted_i, G = sum J_i^T J_i.
   // (collect_bodies has checked that the body has kStickingMinPoints touching points.)
-  PointNormalMatrix G;
+  Mat6 G = Mat6::Zero();
   Vec6 rhs = Vec6::Zero();
   for (const Point& p : pts) {
     if (!p.touching) continue;
-    G.add(*p.r);
-    rhs += generalised(*p.W, p.wanted);
+    const Mat3& W = *p.W;
+    G.topLeftCorner<3, 3>() += Mat3::Identity();
+    G.topRightCorner<3, 3>() += W;
+    G.bottomRightCorner<3, 3>() += W.transpose() * W;
+    rhs += generalised(W, p.wanted);
   }
-  if (!G.factor(kStickingPivotRatio)) return StickingOutcome::ill_conditioned;
-  const Vec6 velocity = G.solve(rhs);
+  G.bottomLeftCorner<3, 3>() = G.topRightCorner<3, 3>().transpose();
+  const Eigen::LDLT<Mat6> ldlt(G);
+  const Vec6 pivots = ldlt.vectorD().cwiseAbs();
+  if (ldlt.info() != Eigen::Success || !(pivots.minCoeff() > kStickingPivotRatio * pivots.maxCoeff()))
+    return StickingOutcome::ill_conditioned;
+  const Vec6 velocity = ldlt.solve(rhs);
 
   // Check it against what the passes solve: touching points at their targets, points with a gap
   // approaching no faster than the gap allows (links are checked once both bodies have moved).
@@ -174,9 +178,9 @@ StickingOutcome solve_body(const SolverBodyArray& sb, std::span<const Point> pts
   const SolverBody& state = sb.state(plan.body);
   Vec6 b;
   b.head<3>() = velocity.head<3>() / state.inv_mass - state.P;
-  b.tail<3>() = symmetric_inverse(state.inv_inertia) * velocity.tail<3>() - state.L;
+  b.tail<3>() = state.inv_inertia.inverse() * velocity.tail<3>() - state.L;
   for (const Point& p : pts) b += generalised(*p.W, p.side * p.c->accumulated);
-  const Vec6 split = G.solve(b);
+  const Vec6 split = ldlt.solve(b);
   plan.P = state.P;
   plan.L = state.L;
   for (const Point& p : pts) {
