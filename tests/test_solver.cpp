@@ -417,9 +417,9 @@ TEST_CASE("the friction-cone test decides as the rounded square root does even a
 
 TEST_CASE("the symmetric 3x3 inverse matches Eigen's general inverse on symmetric positive definite matrices",
           "[solver]") {
-  // Random SPD matrices A A^T + s E over six orders of conditioning, and the collision matrices
-  // of random box contacts: each entry within 1e-14 of Eigen's, relative to the inverse's largest
-  // entry times the condition number's rounding (cond * eps bounds both inverses' error).
+  // Random SPD matrices A A^T + s E over six orders of conditioning: each entry within 1e-14 of
+  // Eigen's, relative to the inverse's largest entry times the condition number (cond * eps
+  // bounds both inverses' error).
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   for (int k = 0; k < 2000; ++k) {

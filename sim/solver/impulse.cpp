@@ -41,11 +41,11 @@ Mat3 collision_matrix_share(const RigidBody& body, const Vec3& r) {
 
 void set_collision_matrix(SolverContact& c, bool a_moves, bool b_moves) {
   c.K = (a_moves ? c.Ka : Mat3::Zero()) + (b_moves ? c.Kb : Mat3::Zero());
-  // K is symmetric positive definite whenever one moving body has finite mass. Its inverse is
-  // taken as symmetric (from K's upper triangle; the lower one differs by rounding), so
-  // n . (K^-1 x) and (K^-1 n) . x sum the same products, grouped differently: they agree to
-  // rounding, where with a general inverse a normal-tangent coupling of rounding size could
-  // differ in sign between the two orientations.
+  // K is symmetric positive definite whenever one moving body has finite mass, and exactly
+  // symmetric as computed (each share is formed from its upper triangle). Its inverse is taken as
+  // symmetric too, so n . (K^-1 x) and (K^-1 n) . x sum the same products, grouped differently:
+  // they agree to rounding, where with a general inverse a normal-tangent coupling of rounding
+  // size could differ in sign between the two orientations.
   c.Kinv = symmetric_inverse(c.K);
   c.Kinv_n = c.Kinv * c.n;
   c.Kinv_n_size = c.Kinv.cwiseAbs() * c.n.cwiseAbs();
