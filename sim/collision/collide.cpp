@@ -67,4 +67,11 @@ double body_pair_depth(const RigidBody& a, const RigidBody& b) {
   return deepest;
 }
 
+double placed_pair_depth(std::span<const OrientedBox> a, std::span<const OrientedBox> b) {
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (const OrientedBox& box_a : a)
+    for (const OrientedBox& box_b : b) deepest = std::max(deepest, -box_box_sat(box_a, box_b).separation);
+  return deepest;
+}
+
 }  // namespace boxpile

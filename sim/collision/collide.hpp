@@ -52,5 +52,7 @@ void collide_body_ground(const PlacedBoxes& boxes, int ia, const HalfSpace& grou
 // Deepest penetration between two bodies over all their shape pairs (exact SAT depth; negative
 // when separated: the largest separation found by the test, a lower bound on the gap).
 double body_pair_depth(const RigidBody& a, const RigidBody& b);
+// The same for two bodies' boxes already placed (PlacedBoxes::of): the same numbers.
+double placed_pair_depth(std::span<const OrientedBox> a, std::span<const OrientedBox> b);
 
 }  // namespace boxpile
