@@ -56,8 +56,8 @@ constexpr std::array<ErrorBound, 5> kBounds = {{
     {"kinetic_final", kMaxKineticFinal, "J"},
 }};
 
-// "pyramid.json own-impulse {"contact_passes":5,"shock_passes":5} dt=1/60": the cell as the docs'
-// table names it.
+// "cell 60: ../../fixtures/scenes/pyramid.json own-impulse {"contact_passes":5,"shock_passes":5}
+// dt=1/60": its number in the grid's order, the scene as the grid names it, settings and step.
 std::string cell_name(const SweepGrid& grid, const CellSpec& spec) {
   std::ostringstream name;
   name << "cell " << spec.index << ": " << grid.scenes.at(static_cast<std::size_t>(spec.scene)).path << ' '
