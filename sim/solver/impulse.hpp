@@ -72,6 +72,8 @@ struct ImpulseCounters {
 
 // Sets c.K and c.Kinv from the shares of the bodies that move (a fixed body has a zero share).
 void set_collision_matrix(SolverContact& c, bool a_moves, bool b_moves);
+// Sets c.K to K (Ka + Kb, or the moving body's share alone) and c.Kinv from it.
+void set_collision_matrix(SolverContact& c, const Mat3& K);
 
 // The impulse on A for relative velocity u, restitution e, friction on or off, with c.K.
 // Returns zero when the point does not approach (u_n >= 0).

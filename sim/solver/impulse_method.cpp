@@ -102,9 +102,12 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
     c.slop = pair.slop;
     c.friction = pair.friction;
     c.restitution = pair.restitution;
-    if (!a.fixed) c.Ka = collision_matrix_share(a, c.ra);
-    if (!b.fixed) c.Kb = collision_matrix_share(b, c.rb);
-    set_collision_matrix(c, !a.fixed, !b.fixed);
+    // The shares formed in locals, so K is summed from registers rather than from the stores.
+    const Mat3 Ka = a.fixed ? Mat3::Zero() : collision_matrix_share(a, c.ra);
+    const Mat3 Kb = b.fixed ? Mat3::Zero() : collision_matrix_share(b, c.rb);
+    c.Ka = Ka;
+    c.Kb = Kb;
+    set_collision_matrix(c, Ka + Kb);
   }
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "boxpile/sim/body.hpp"
+#include "boxpile/sim/collision/collide.hpp"
 #include "boxpile/sim/math.hpp"
 #include "boxpile/sim/solver/impulse.hpp"
 
@@ -36,8 +37,11 @@ class SolverBodyArray {
   // cross products, the compiler assembled two of their scalars into a pair through the stack, and
   // the load waited on two stores it could not forward (perf: the hottest instruction of both
   // resting loops); as a product the pair comes out of registers.
+  // The ground's point is at rest: a ground contact reads only A (the result is the same, up to
+  // the sign of a zero).
   Vec3 relative_velocity(const SolverContact& c) const {
     const SolverBody& a = at(c.a);
+    if (c.b == kGround) return a.v + c.Wa * a.omega;
     const SolverBody& b = at(c.b);
     return a.v + c.Wa * a.omega - b.v - c.Wb * b.omega;
   }
@@ -51,7 +55,9 @@ class SolverBodyArray {
   // inertia, so it does not move; a frozen body is left out by its flag.
   void apply(const SolverContact& c, const Vec3& j, bool a_moves = true, bool b_moves = true) {
     if (a_moves) push(at(c.a), j, c.ra);
-    if (b_moves) push(at(c.b), -j, c.rb);
+    // The ground is not pushed: its zero inverse mass would leave it at rest, but its momenta
+    // would chain every ground contact's impulse to the one before.
+    if (b_moves && c.b != kGround) push(at(c.b), -j, c.rb);
   }
 
  private:
