@@ -110,6 +110,38 @@ void check_in_cones(const Group& g) {
   }
 }
 
+// Begins `g`'s resting phase and solves it directly, which must take it, and checks that it ends
+// with the velocities 2,000 passes from the same start converge to, its residual within the
+// passes' bound.
+void solve_as_the_passes_do(Group& g) {
+  Group passes = g;
+  passes.begin();
+  g.begin();
+  passes.passes(2000);
+  double residual = -1.0;
+  REQUIRE(g.direct(residual) == StickingOutcome::solved);
+  CHECK(residual <= kRestingConverged);
+  CHECK((velocity(g) - velocity(passes)).norm() < 1e-10);
+  CHECK((spin(g) - spin(passes)).norm() < 1e-10);
+}
+
+// Steps the world `steps` times and counts the steps whose shock propagation ran passes: a step
+// whose every group was solved directly counts one pass per level and no more.
+int steps_with_passes(World& w, int steps) {
+  int count = 0;
+  for (int k = 0; k < steps; ++k) {
+    w.step();
+    const StepStats& st = w.last_step_stats();
+    if (st.shock_pass_count != 1 || st.shock_passes_used != st.shock_levels) ++count;
+  }
+  return count;
+}
+
+// Every body at rest to rounding (1e-12 m/s, the passes' convergence bound).
+void check_at_rest(const World& w) {
+  for (const RigidBody& b : w.bodies()) CHECK(b.v.norm() < 1e-12);
+}
+
 }  // namespace
 
 TEST_CASE("a box landing on the ground: the direct solve gives the passes' velocity", "[solver][sticking]") {
@@ -145,14 +177,7 @@ TEST_CASE("a box on a moving frozen box follows it as the passes do", "[solver][
                          Vec3(0.0, 0.0, 0.02)));
   for (const double x : {-0.35, 0.45})
     for (const double y : {-0.23, 0.27}) g.touch(Vec3(x, y, 0.4), Vec3::UnitZ(), 1);
-  Group passes = g;
-  passes.begin();
-  g.begin();
-  passes.passes(2000);
-  double residual = -1.0;
-  REQUIRE(g.direct(residual) == StickingOutcome::solved);
-  CHECK((velocity(g) - velocity(passes)).norm() < 1e-10);
-  CHECK((spin(g) - spin(passes)).norm() < 1e-10);
+  solve_as_the_passes_do(g);
   for (const SolverContact& c : g.contacts) CHECK(g.sb.relative_velocity(c).norm() < 1e-12);
   check_in_cones(g);
 }
@@ -273,15 +298,7 @@ TEST_CASE("points a rounding away from touching count as touching when the group
   g.bodies.push_back(box(Vec3(0.0, 0.0, 0.2), Vec3(0.5, 0.3, 0.2), 2.0, v, omega));
   for (const double x : {-0.5, 0.5})
     for (const double y : {-0.3, 0.3}) g.touch(Vec3(x, y, 0.0), Vec3::UnitZ(), kGround, x < 0.0 ? -1e-15 : 0.0);
-  Group passes = g;
-  passes.begin();
-  g.begin();
-  passes.passes(2000);
-  double residual = -1.0;
-  REQUIRE(g.direct(residual) == StickingOutcome::solved);
-  CHECK(residual <= kRestingConverged);
-  CHECK((velocity(g) - velocity(passes)).norm() < 1e-10);
-  CHECK((spin(g) - spin(passes)).norm() < 1e-10);
+  solve_as_the_passes_do(g);
   check_in_cones(g);
 
   SECTION("a gap far beyond rounding is not closed") {
@@ -292,6 +309,7 @@ TEST_CASE("points a rounding away from touching count as touching when the group
       for (const double y : {-0.3, 0.3}) far.touch(Vec3(x, y, 0.0), Vec3::UnitZ(), kGround, x < 0.0 ? -1e-3 : 0.0);
     far.begin();
     const Vec3 before = velocity(far);
+    double residual = -1.0;
     CHECK(far.direct(residual) == StickingOutcome::too_few_points);
     CHECK(velocity(far) == before);
   }
@@ -302,15 +320,9 @@ TEST_CASE("every layer of the resting Jenga tower is solved directly at every st
   // some of a block's points on the blocks below 1e-16 to 1e-13 m apart: counted as gaps, they
   // left a block too few points or points on a line, and 13% of the layers went to the passes.
   World w(load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/hard/jenga.json"));
-  int steps_with_passes = 0;
-  for (int k = 0; k < 480; ++k) {
-    w.step();
-    const StepStats& st = w.last_step_stats();
-    if (st.shock_pass_count != 1 || st.shock_passes_used != st.shock_levels) ++steps_with_passes;
-  }
-  CHECK(steps_with_passes == 0);
+  CHECK(steps_with_passes(w, 480) == 0);
   CHECK(w.last_step_stats().shock_levels == 18);
-  for (const RigidBody& b : w.bodies()) CHECK(b.v.norm() < 1e-12);
+  check_at_rest(w);
 }
 
 TEST_CASE("a resting stack's shock levels are each solved directly in one pass", "[solver][sticking]") {
@@ -324,7 +336,7 @@ TEST_CASE("a resting stack's shock levels are each solved directly in one pass",
   CHECK(st.shock_passes_used == 10);
   CHECK(st.shock_pass_count == 1);
   CHECK(st.shock_change[0] <= kRestingConverged);
-  for (const RigidBody& b : w.bodies()) CHECK(b.v.norm() < 1e-12);
+  check_at_rest(w);
 }
 
 TEST_CASE("every group of a resting pyramid on corners is solved directly at every step", "[solver][sticking]") {
@@ -339,13 +351,7 @@ TEST_CASE("every group of a resting pyramid on corners is solved directly at eve
   scene.solver.contact_passes = 20;
   scene.solver.shock_passes = 20;
   World w(scene);
-  int steps_with_passes = 0;
-  for (int k = 0; k < 600; ++k) {
-    w.step();
-    const StepStats& st = w.last_step_stats();
-    if (st.shock_pass_count != 1 || st.shock_passes_used != st.shock_levels) ++steps_with_passes;
-  }
-  CHECK(steps_with_passes == 0);
+  CHECK(steps_with_passes(w, 600) == 0);
   CHECK(w.last_step_stats().shock_levels == 6);
-  for (const RigidBody& b : w.bodies()) CHECK(b.v.norm() < 1e-12);
+  check_at_rest(w);
 }
