@@ -33,7 +33,7 @@ constexpr int kStickingMinPoints = 3;
 // faces resting on each other end a step 1e-16 to 1e-13 m apart or into each other by rounding,
 // so a Jenga block's points on the blocks below fall on either side of depth 0 at random, and
 // those with a gap of rounding size left the block too few points, or points on one line, or a
-// split outside a cone (6% of the Jenga tower's groups). Asked to stick, such a point closes its
+// split outside a cone (13% of the Jenga tower's groups). Asked to stick, such a point closes its
 // gap within the step (it moves 1e-9 m at most).
 constexpr double kNearTouchingGap = 1e-9;
 
@@ -70,8 +70,9 @@ bool in_cone(const SolverContact& c, const Vec3& J) {
 }
 
 // Whether a point of the group sticks under the hypothesis: it joins a moving body to one that
-// does not move (frozen, fixed or the ground) and touches it (depth >= 0). A point with a gap, or
-// between two moving bodies, carries no impulse instead.
+// does not move (frozen, fixed or the ground) and touches it (depth >= -gap: 0 as the passes see
+// it, kNearTouchingGap on the second try). A point with a larger gap, or between two moving bodies,
+// carries no impulse instead.
 bool touches_support(const ShockPropagation::LevelContact& lc, const SolverContact& c, double gap) {
   return lc.a_moves != lc.b_moves && c.depth >= -gap;
 }
@@ -81,7 +82,7 @@ bool any_near_touching(const std::vector<SolverContact>& contacts,
                        std::span<const ShockPropagation::LevelContact> group, double gap) {
   for (const ShockPropagation::LevelContact& lc : group) {
     const SolverContact& c = contacts[static_cast<std::size_t>(lc.index)];
-    if (lc.a_moves != lc.b_moves && c.depth < 0.0 && c.depth >= -gap) return true;
+    if (touches_support(lc, c, gap) && !touches_support(lc, c, 0.0)) return true;
   }
   return false;
 }

@@ -10,7 +10,9 @@
 // velocity. The solve checks that this is a solution of what the passes solve (every touching
 // point at its target, every impulse in its friction cone, a point with a gap or between two moving
 // bodies free of impulse and not approaching faster than it may) and otherwise leaves the group to
-// the passes. docs/solver.md, "Sticking groups solved directly", has the derivation.
+// the passes. A group it declines is tried once more with the points a rounding away from touching
+// (kNearTouchingGap) counted as touching. docs/solver.md, "Sticking groups solved directly", has
+// the derivation, and "Points a rounding away from touching" the second try.
 #pragma once
 
 #include <cstdint>
