@@ -215,9 +215,9 @@ void ShockPropagation::solve_groups(ImpulseStep& step) {
   // over the rest. Each pass runs over the groups that have not converged yet: a group leaves
   // once no impulse of a pass changes a point's velocity by more than kRestingConverged (its later
   // passes would change nothing that matters). The level ends as a whole level did before it was
-  // split: when every group has converged, or when the largest change of a pass stalls. (Letting a stalled
-  // group leave on its own took some 10% more off pyramid_10, but let a tumbling pile's slowly
-  // converging groups run on, and the brick wall's penetration went from 0.57 to 4.6 mm.)
+  // split: when every group has converged, or when the largest change of a pass stalls. (Letting a
+  // stalled group leave on its own took some 10% more off pyramid_10, but let a tumbling pile's
+  // slowly converging groups run on, and the brick wall's penetration went from 0.57 to 4.6 mm.)
   StepStats& stats = step.stats();
   const int passes = step.settings().shock_passes;
   const PassContext context(step);

@@ -39,7 +39,7 @@ constexpr double kNearTouchingGap = 1e-9;
 
 // One point of a body as the solve sees it: its place in the group, the body's W = [r]x^T there,
 // the sign of the impulse on the body (+1 when it is A), the velocity the point must reach, and
-// whether it touches a body that does not move (depth >= 0: it sticks), has a gap to one (it
+// whether it touches a body that does not move (touches_support: it sticks), has a gap to one (it
 // carries no impulse), or links two moving bodies (it carries no impulse either). Left
 // uninitialised until filled: a group's array of them is set up for every group of every level.
 struct Point {
