@@ -1,8 +1,8 @@
 // No heap allocation inside a step: a counting global operator new, in a test binary of its own
 // (replacing operator new in the main test binary would count Catch2's own allocations too).
 // Every step's storage is sized when the world is built, so stepping allocates nothing; the
-// penalty method sizes its anchors' storage in its first steps.
-#define CATCH_CONFIG_MAIN
+// penalty method sizes its anchors' storage in its first steps. Catch2's runner and main() come
+// from Catch2::Catch2WithMain, as in the other test programs.
 #include <catch2/catch.hpp>
 
 #include <atomic>
