@@ -39,6 +39,7 @@ void PenetrationRecovery::reserve(const StepStorage& storage) {
   pseudo_omega_.reserve(storage.bodies);
   pushed_.reserve(storage.bodies);
   lambda_.reserve(storage.contacts());
+  normal_mass_.reserve(storage.contacts());
   target_.reserve(storage.contacts());
   all_.reserve(storage.contacts());
   phase_.reserve(storage.contacts());
@@ -55,6 +56,8 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
   pseudo_omega_.assign(n, Vec3::Zero());
   pushed_.assign(n, 0);
   lambda_.assign(contacts.size(), 0.0);
+  normal_mass_.assign(contacts.size(), kNormalMassUnset);
+  skipped_phases_ = 0;
   target_.resize(contacts.size());
   all_.clear();
   bool any_push = false;
@@ -79,6 +82,13 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
 
 void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const int> contacts,
                                       const ShockPropagation* shock, int level) {
+  // A phase none of whose contacts may change would skip every contact in its first pass and stop
+  // there: it is skipped whole (most often a low level of a pile, left as the velocities had it).
+  const auto changes = [&](int k) { return may_change(k, step.contacts[k].a, step.contacts[k].b); };
+  if (std::none_of(contacts.begin(), contacts.end(), changes)) {
+    ++skipped_phases_;
+    return;
+  }
   collect_phase(step, contacts, shock, level);
   group_phase(step.sb.bodies.size());
   for (int g = 0; g < groups_.count(); ++g) solve_group(step, groups_.group(grouped_, g), shock != nullptr);
@@ -95,9 +105,16 @@ void PenetrationRecovery::collect_phase(const ImpulseStep& step, std::span<const
   for (const int k : contacts) {
     const SolverContact& c = step.contacts[k];
     const bool a_moves = moves(c.a), b_moves = moves(c.b);
-    const double k_nn = c.n.dot(((a_moves ? c.Ka : Mat3::Zero()) + (b_moves ? c.Kb : Mat3::Zero())) * c.n);
+    if (!a_moves && !b_moves) continue;
+    const double k_nn = normal_mass(c, k, a_moves, b_moves);
     if (k_nn > 0.0) phase_.push_back({k, c.a, c.b, a_moves, b_moves, 1.0 / k_nn});
   }
+}
+
+double PenetrationRecovery::normal_mass(const SolverContact& c, int k, bool a_moves, bool b_moves) {
+  double& cached = normal_mass_[static_cast<std::size_t>(k)][(a_moves ? 1 : 0) + (b_moves ? 2 : 0) - 1];
+  if (std::isnan(cached)) cached = a_moves && b_moves ? c.n.dot((c.Ka + c.Kb) * c.n) : c.n.dot((a_moves ? c.Ka : c.Kb) * c.n);
+  return cached;
 }
 
 void PenetrationRecovery::group_phase(std::size_t bodies) {
@@ -126,9 +143,7 @@ void PenetrationRecovery::solve_group(const ImpulseStep& step, std::span<const P
     for (const PhaseContact& pc : group) {
       // A contact that asks for no push and has none, between bodies nothing has pushed yet, would
       // stay at zero: skipped (most of a pile's resting contacts in the first passes).
-      if (target_[pc.index] <= 0.0 && lambda_[pc.index] == 0.0 && !(pc.a >= 0 && pushed_[pc.a]) &&
-          !(pc.b >= 0 && pushed_[pc.b]))
-        continue;
+      if (!may_change(pc.index, pc.a, pc.b)) continue;
       const SolverContact& c = step.contacts[pc.index];
       // Normal-only: lambda += (target - u_n) / (n . K n), kept >= 0 (pushes only).
       const double un = c.n.dot(point_velocity(c.a, c.ra) - point_velocity(c.b, c.rb));
