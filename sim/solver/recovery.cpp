@@ -17,6 +17,13 @@ constexpr double kRecoveryConverged = 0.05;
 // follows, is the one that can free it.
 constexpr double kRecoveryProgress = 0.95;
 constexpr int kRecoveryStallPasses = 3;
+// A pass records its largest |change| / inv_k_nn dt / slop. |change| k_nn dt / slop, formed once
+// per contact and phase, differs from that term by a few ulps: a contact whose product is below
+// this fraction of the largest so far cannot be the largest, and its two divisions are skipped (the
+// largest stays the same to the last bit). Below kRecoveryTiny, where products may underflow, every
+// term is divided out.
+constexpr double kRecoveryBelowLargest = 1.0 - 1e-9;
+constexpr double kRecoveryTiny = 1e-280;
 }  // namespace
 
 // The separating pseudo-velocity a contact asks for, beyond what the resolved velocities already
@@ -85,7 +92,7 @@ void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const i
   // A phase none of whose contacts may change would skip every contact in its first pass and stop
   // there: it is skipped whole (most often a low level of a pile, left as the velocities had it).
   const auto changes = [&](int k) { return may_change(k, step.contacts[k].a, step.contacts[k].b); };
-  if (std::none_of(contacts.begin(), contacts.end(), changes)) {
+  if (skip_idle_phases_ && std::none_of(contacts.begin(), contacts.end(), changes)) {
     ++skipped_phases_;
     return;
   }
@@ -107,7 +114,7 @@ void PenetrationRecovery::collect_phase(const ImpulseStep& step, std::span<const
     const bool a_moves = moves(c.a), b_moves = moves(c.b);
     if (!a_moves && !b_moves) continue;
     const double k_nn = normal_mass(c, k, a_moves, b_moves);
-    if (k_nn > 0.0) phase_.push_back({k, c.a, c.b, a_moves, b_moves, 1.0 / k_nn});
+    if (k_nn > 0.0) phase_.push_back({k, c.a, c.b, a_moves, b_moves, 1.0 / k_nn, k_nn * step.dt() / c.slop});
   }
 }
 
@@ -150,7 +157,9 @@ void PenetrationRecovery::solve_group(const ImpulseStep& step, std::span<const P
       const double lambda = std::max(0.0, lambda_[pc.index] + (target_[pc.index] - un) * pc.inv_k_nn);
       const double change = lambda - lambda_[pc.index];
       if (change == 0.0) continue;
-      largest_change = std::max(largest_change, std::abs(change) / pc.inv_k_nn * step.dt() / c.slop);
+      // The pass's largest change, with its two divisions only where the term could be the largest.
+      if (largest_change < kRecoveryTiny || !(std::abs(change) * pc.change_scale < kRecoveryBelowLargest * largest_change))
+        largest_change = std::max(largest_change, std::abs(change) / pc.inv_k_nn * step.dt() / c.slop);
       lambda_[pc.index] = lambda;
       const Vec3 impulse = change * c.n;
       if (pc.a_moves) push(c.a, impulse, c.ra);

@@ -33,8 +33,11 @@ class PenetrationRecovery {
 
   const std::vector<Vec3>& pseudo_v() const { return pseudo_v_; }
   const std::vector<Vec3>& pseudo_omega() const { return pseudo_omega_; }
-  // Phases of the last run skipped whole because none of their contacts could change.
+  // Phases of the last run skipped whole because none of their contacts could change, and whether
+  // such phases are skipped (the default; off, they run their first pass, which changes nothing:
+  // the tests compare the two).
   int skipped_phases() const { return skipped_phases_; }
+  void skip_idle_phases(bool on) { skip_idle_phases_ = on; }
 
  private:
   // The separating pseudo-velocity contact `c` asks for, m/s (see the .cpp).
@@ -45,6 +48,7 @@ class PenetrationRecovery {
     int a = 0, b = 0;  // its bodies (kGround: the ground)
     bool a_moves = false, b_moves = false;
     double inv_k_nn = 0.0;  // 1 / (n . K n) over the bodies that move
+    double change_scale = 0.0;  // (n . K n) dt / slop: |change| times it bounds the pass's change
   };
 
   // Whether contact k (between bodies a and b) may change in a pass: it asks for a push, has one,
@@ -77,6 +81,7 @@ class PenetrationRecovery {
                                                              std::numeric_limits<double>::quiet_NaN(),
                                                              std::numeric_limits<double>::quiet_NaN()};
   int skipped_phases_ = 0;
+  bool skip_idle_phases_ = true;
   std::vector<int> all_;        // every contact of the step
   std::vector<PhaseContact> phase_;
   std::vector<PhaseContact> grouped_;  // phase_ by group
