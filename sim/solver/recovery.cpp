@@ -63,7 +63,6 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
   pseudo_omega_.assign(n, Vec3::Zero());
   pushed_.assign(n, 0);
   lambda_.assign(contacts.size(), 0.0);
-  normal_mass_.assign(contacts.size(), kNormalMassUnset);
   skipped_phases_ = 0;
   target_.resize(contacts.size());
   all_.clear();
@@ -74,6 +73,7 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
     all_.push_back(static_cast<int>(k));
   }
   if (!any_push) return;  // nothing overlaps beyond the slop or approaches: no pseudo-velocity
+  normal_mass_.assign(contacts.size(), kNormalMassUnset);
 
   // With shock propagation's levels, first each level from the ground up with the lower ones
   // frozen, as the velocities were: a body on top cannot push the bodies under it into the
