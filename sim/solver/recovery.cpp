@@ -17,11 +17,11 @@ constexpr double kRecoveryConverged = 0.05;
 // follows, is the one that can free it.
 constexpr double kRecoveryProgress = 0.95;
 constexpr int kRecoveryStallPasses = 3;
-// A pass records its largest |change| / inv_k_nn dt / slop. |change| k_nn dt / slop, formed once
-// per contact and phase, differs from that term by a few ulps: a contact whose product is below
-// this fraction of the largest so far cannot be the largest, and its two divisions are skipped (the
-// largest stays the same to the last bit). Below kRecoveryTiny, where products may underflow, every
-// term is divided out.
+// A pass records its largest |change| / inv_k_nn dt / slop. |change| (k_nn dt / slop), its scale
+// formed once per contact and phase, differs from that term by a few ulps: a contact whose product
+// is below this fraction of the largest so far cannot be the largest, and its two divisions are
+// skipped (the largest stays the same to the last bit; perf had them at some 15% of the passes).
+// While the largest is below kRecoveryTiny, where products may underflow, every term is divided out.
 constexpr double kRecoveryBelowLargest = 1.0 - 1e-9;
 constexpr double kRecoveryTiny = 1e-280;
 }  // namespace
@@ -91,8 +91,8 @@ void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const i
                                       const ShockPropagation* shock, int level) {
   // A phase none of whose contacts may change would skip every contact in its first pass and stop
   // there: it is skipped whole (most often a low level of a pile, left as the velocities had it).
-  const auto changes = [&](int k) { return may_change(k, step.contacts[k].a, step.contacts[k].b); };
-  if (skip_idle_phases_ && std::none_of(contacts.begin(), contacts.end(), changes)) {
+  const auto can_change = [&](int k) { return may_change(k, step.contacts[k].a, step.contacts[k].b); };
+  if (skip_idle_phases_ && std::none_of(contacts.begin(), contacts.end(), can_change)) {
     ++skipped_phases_;
     return;
   }
@@ -112,7 +112,7 @@ void PenetrationRecovery::collect_phase(const ImpulseStep& step, std::span<const
   for (const int k : contacts) {
     const SolverContact& c = step.contacts[k];
     const bool a_moves = moves(c.a), b_moves = moves(c.b);
-    if (!a_moves && !b_moves) continue;
+    if (!a_moves && !b_moves) continue;  // nothing it could push
     const double k_nn = normal_mass(c, k, a_moves, b_moves);
     if (k_nn > 0.0) phase_.push_back({k, c.a, c.b, a_moves, b_moves, 1.0 / k_nn, k_nn * step.dt() / c.slop});
   }
@@ -120,7 +120,9 @@ void PenetrationRecovery::collect_phase(const ImpulseStep& step, std::span<const
 
 double PenetrationRecovery::normal_mass(const SolverContact& c, int k, bool a_moves, bool b_moves) {
   double& cached = normal_mass_[static_cast<std::size_t>(k)][(a_moves ? 1 : 0) + (b_moves ? 2 : 0) - 1];
-  if (std::isnan(cached)) cached = a_moves && b_moves ? c.n.dot((c.Ka + c.Kb) * c.n) : c.n.dot((a_moves ? c.Ka : c.Kb) * c.n);
+  // The sum as the phases formed it before, without adding a zero share: the same to the last bit.
+  if (std::isnan(cached))
+    cached = a_moves && b_moves ? c.n.dot((c.Ka + c.Kb) * c.n) : c.n.dot((a_moves ? c.Ka : c.Kb) * c.n);
   return cached;
 }
 
@@ -158,7 +160,8 @@ void PenetrationRecovery::solve_group(const ImpulseStep& step, std::span<const P
       const double change = lambda - lambda_[pc.index];
       if (change == 0.0) continue;
       // The pass's largest change, with its two divisions only where the term could be the largest.
-      if (largest_change < kRecoveryTiny || !(std::abs(change) * pc.change_scale < kRecoveryBelowLargest * largest_change))
+      const double scaled = std::abs(change) * pc.change_scale;
+      if (largest_change < kRecoveryTiny || !(scaled < kRecoveryBelowLargest * largest_change))
         largest_change = std::max(largest_change, std::abs(change) / pc.inv_k_nn * step.dt() / c.slop);
       lambda_[pc.index] = lambda;
       const Vec3 impulse = change * c.n;

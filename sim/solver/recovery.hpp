@@ -48,7 +48,7 @@ class PenetrationRecovery {
     int a = 0, b = 0;  // its bodies (kGround: the ground)
     bool a_moves = false, b_moves = false;
     double inv_k_nn = 0.0;  // 1 / (n . K n) over the bodies that move
-    double change_scale = 0.0;  // (n . K n) dt / slop: |change| times it bounds the pass's change
+    double change_scale = 0.0;  // (n . K n) dt / slop: |change| times it is the pass's change term
   };
 
   // Whether contact k (between bodies a and b) may change in a pass: it asks for a push, has one,
@@ -56,7 +56,8 @@ class PenetrationRecovery {
   bool may_change(int k, int a, int b) const {
     return target_[k] > 0.0 || lambda_[k] != 0.0 || (a >= 0 && pushed_[a]) || (b >= 0 && pushed_[b]);
   }
-  // n . K n of contact `c` (index k) over the bodies that move, formed once per run and kind.
+  // n . K n of contact `c` (index k) over the bodies that move (at least one), formed once per run
+  // for each of A alone, B alone and both.
   double normal_mass(const SolverContact& c, int k, bool a_moves, bool b_moves);
 
   // One phase: `contacts` with bodies below `level` frozen (none without `shock`), solved as groups
