@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "boxpile/sim/solver/collision_loop.hpp"
-#include "boxpile/sim/solver/contact_loop.hpp"
 #include "boxpile/sim/solver/integrate.hpp"
 
 namespace boxpile {
@@ -32,6 +31,7 @@ ImpulseMethod::ImpulseMethod(std::size_t body_count) {
   const StepStorage storage{body_count};
   solver_contacts_.reserve(storage.contacts());
   resting_bodies_.reserve(body_count);
+  contact_loop_.reserve(storage);
   shock_.reserve(storage);
   recovery_.reserve(storage);
 }
@@ -58,7 +58,7 @@ void ImpulseMethod::step(StepContext& ctx) {
   enforce_wires(bodies, ctx.wires);
 
   // 4. Contact loop: every contact of the set, restitution ramped up to 0.
-  contact_loop(step);
+  contact_loop_.run(step);
   ++ctx.counters.contact_loop_runs;
   enforce_wires(bodies, ctx.wires);
 
