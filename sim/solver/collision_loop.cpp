@@ -9,7 +9,6 @@
 namespace boxpile {
 
 namespace {
-
 // One event per pair and step with an approach faster than `event_speed` before the loop's first
 // impulse (later passes see a body already turned by other points' impulses), with the pair's
 // summed impulse. Contacts of a pair are consecutive.

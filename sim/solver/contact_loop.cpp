@@ -12,10 +12,11 @@ void ContactLoop::run(ImpulseStep& step) {
   const double dt = step.dt();
   assert(passes <= kMaxSolverPasses);
   // The lab text's "remaining non-separating contacts in the original contact set": a point that
-  // separates, or whose gap stays open at its speed, by more than rounding takes no part (a tenth
-  // of the tumbling pile's step). Points at rest stay in, though their start may separate by
+  // separates, or whose gap stays open at its speed, by more than rounding takes no part (13% off
+  // the tumbling pile's step). Points at rest stay in, though their start may separate by
   // rounding: left out, the loop pushed a card of the card house away from the one it leans on,
-  // and the house fell. Shock propagation, which follows, solves every contact again.
+  // and the house fell. Shock propagation, which follows, solves every contact of the bodies the
+  // ground supports again.
   resting_.clear();
   for (int k = 0; k < static_cast<int>(step.contacts.size()); ++k) {
     SolverContact& c = step.contacts[k];

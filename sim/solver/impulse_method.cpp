@@ -57,7 +57,7 @@ void ImpulseMethod::step(StepContext& ctx) {
   integrate_momenta(ctx);
   enforce_wires(bodies, ctx.wires);
 
-  // 4. Contact loop: every contact of the set, restitution ramped up to 0.
+  // 4. Contact loop: the contacts that do not separate, restitution ramped up to 0.
   contact_loop_.run(step);
   ++ctx.counters.contact_loop_runs;
   enforce_wires(bodies, ctx.wires);

@@ -17,6 +17,13 @@ constexpr double kRecoveryConverged = 0.05;
 // follows, is the one that can free it.
 constexpr double kRecoveryProgress = 0.95;
 constexpr int kRecoveryStallPasses = 3;
+// A pass records its largest |change| / inv_k_nn dt / slop. |change| (k_nn dt / slop), its scale
+// formed once per contact and phase, differs from that term by a few ulps: a contact whose product
+// is below this fraction of the largest so far cannot be the largest, and its two divisions are
+// skipped (the largest stays the same to the last bit; perf had them at some 15% of the passes).
+// While the largest is below kRecoveryTiny, where products may underflow, every term is divided out.
+constexpr double kRecoveryBelowLargest = 1.0 - 1e-9;
+constexpr double kRecoveryTiny = 1e-280;
 }  // namespace
 
 // The separating pseudo-velocity a contact asks for, beyond what the resolved velocities already
@@ -39,6 +46,7 @@ void PenetrationRecovery::reserve(const StepStorage& storage) {
   pseudo_omega_.reserve(storage.bodies);
   pushed_.reserve(storage.bodies);
   lambda_.reserve(storage.contacts());
+  normal_mass_.reserve(storage.contacts());
   target_.reserve(storage.contacts());
   all_.reserve(storage.contacts());
   phase_.reserve(storage.contacts());
@@ -55,6 +63,7 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
   pseudo_omega_.assign(n, Vec3::Zero());
   pushed_.assign(n, 0);
   lambda_.assign(contacts.size(), 0.0);
+  skipped_phases_ = 0;
   target_.resize(contacts.size());
   all_.clear();
   bool any_push = false;
@@ -64,6 +73,7 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
     all_.push_back(static_cast<int>(k));
   }
   if (!any_push) return;  // nothing overlaps beyond the slop or approaches: no pseudo-velocity
+  normal_mass_.assign(contacts.size(), kNormalMassUnset);
 
   // With shock propagation's levels, first each level from the ground up with the lower ones
   // frozen, as the velocities were: a body on top cannot push the bodies under it into the
@@ -79,6 +89,13 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
 
 void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const int> contacts,
                                       const ShockPropagation* shock, int level) {
+  // A phase none of whose contacts may change would skip every contact in its first pass and stop
+  // there: it is skipped whole (most often a low level of a pile, left as the velocities had it).
+  const auto can_change = [&](int k) { return may_change(k, step.contacts[k].a, step.contacts[k].b); };
+  if (skip_idle_phases_ && std::none_of(contacts.begin(), contacts.end(), can_change)) {
+    ++skipped_phases_;
+    return;
+  }
   collect_phase(step, contacts, shock, level);
   group_phase(step.sb.bodies.size());
   for (int g = 0; g < groups_.count(); ++g) solve_group(step, groups_.group(grouped_, g), shock != nullptr);
@@ -95,9 +112,18 @@ void PenetrationRecovery::collect_phase(const ImpulseStep& step, std::span<const
   for (const int k : contacts) {
     const SolverContact& c = step.contacts[k];
     const bool a_moves = moves(c.a), b_moves = moves(c.b);
-    const double k_nn = c.n.dot(((a_moves ? c.Ka : Mat3::Zero()) + (b_moves ? c.Kb : Mat3::Zero())) * c.n);
-    if (k_nn > 0.0) phase_.push_back({k, c.a, c.b, a_moves, b_moves, 1.0 / k_nn});
+    if (!a_moves && !b_moves) continue;  // nothing it could push
+    const double k_nn = normal_mass(c, k, a_moves, b_moves);
+    if (k_nn > 0.0) phase_.push_back({k, c.a, c.b, a_moves, b_moves, 1.0 / k_nn, k_nn * step.dt() / c.slop});
   }
+}
+
+double PenetrationRecovery::normal_mass(const SolverContact& c, int k, bool a_moves, bool b_moves) {
+  double& cached = normal_mass_[static_cast<std::size_t>(k)][(a_moves ? 1 : 0) + (b_moves ? 2 : 0) - 1];
+  // The sum as the phases formed it before, without adding a zero share: the same to the last bit.
+  if (std::isnan(cached))
+    cached = a_moves && b_moves ? c.n.dot((c.Ka + c.Kb) * c.n) : c.n.dot((a_moves ? c.Ka : c.Kb) * c.n);
+  return cached;
 }
 
 void PenetrationRecovery::group_phase(std::size_t bodies) {
@@ -126,16 +152,17 @@ void PenetrationRecovery::solve_group(const ImpulseStep& step, std::span<const P
     for (const PhaseContact& pc : group) {
       // A contact that asks for no push and has none, between bodies nothing has pushed yet, would
       // stay at zero: skipped (most of a pile's resting contacts in the first passes).
-      if (target_[pc.index] <= 0.0 && lambda_[pc.index] == 0.0 && !(pc.a >= 0 && pushed_[pc.a]) &&
-          !(pc.b >= 0 && pushed_[pc.b]))
-        continue;
+      if (!may_change(pc.index, pc.a, pc.b)) continue;
       const SolverContact& c = step.contacts[pc.index];
       // Normal-only: lambda += (target - u_n) / (n . K n), kept >= 0 (pushes only).
       const double un = c.n.dot(point_velocity(c.a, c.ra) - point_velocity(c.b, c.rb));
       const double lambda = std::max(0.0, lambda_[pc.index] + (target_[pc.index] - un) * pc.inv_k_nn);
       const double change = lambda - lambda_[pc.index];
       if (change == 0.0) continue;
-      largest_change = std::max(largest_change, std::abs(change) / pc.inv_k_nn * step.dt() / c.slop);
+      // The pass's largest change, with its two divisions only where the term could be the largest.
+      const double scaled = std::abs(change) * pc.change_scale;
+      if (largest_change < kRecoveryTiny || !(scaled < kRecoveryBelowLargest * largest_change))
+        largest_change = std::max(largest_change, std::abs(change) / pc.inv_k_nn * step.dt() / c.slop);
       lambda_[pc.index] = lambda;
       const Vec3 impulse = change * c.n;
       if (pc.a_moves) push(c.a, impulse, c.ra);

@@ -5,6 +5,8 @@
 // solver setting (`penetration_recovery`, 0 turns it off).
 #pragma once
 
+#include <array>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -31,6 +33,11 @@ class PenetrationRecovery {
 
   const std::vector<Vec3>& pseudo_v() const { return pseudo_v_; }
   const std::vector<Vec3>& pseudo_omega() const { return pseudo_omega_; }
+  // Phases of the last run skipped whole because none of their contacts could change, and whether
+  // such phases are skipped (the default; off, they run their first pass, which changes nothing:
+  // the tests compare the two).
+  int skipped_phases() const { return skipped_phases_; }
+  void skip_idle_phases(bool on) { skip_idle_phases_ = on; }
 
  private:
   // The separating pseudo-velocity contact `c` asks for, m/s (see the .cpp).
@@ -41,7 +48,17 @@ class PenetrationRecovery {
     int a = 0, b = 0;  // its bodies (kGround: the ground)
     bool a_moves = false, b_moves = false;
     double inv_k_nn = 0.0;  // 1 / (n . K n) over the bodies that move
+    double change_scale = 0.0;  // (n . K n) dt / slop: |change| times it is the pass's change term
   };
+
+  // Whether contact k (between bodies a and b) may change in a pass: it asks for a push, has one,
+  // or a body of it has been pushed. One that may not would stay at zero.
+  bool may_change(int k, int a, int b) const {
+    return target_[k] > 0.0 || lambda_[k] != 0.0 || (a >= 0 && pushed_[a]) || (b >= 0 && pushed_[b]);
+  }
+  // n . K n of contact `c` (index k) over the bodies that move (at least one), formed once per run
+  // for each of A alone, B alone and both.
+  double normal_mass(const SolverContact& c, int k, bool a_moves, bool b_moves);
 
   // One phase: `contacts` with bodies below `level` frozen (none without `shock`), solved as groups
   // that share no moving body, each by its passes until it converges.
@@ -58,6 +75,14 @@ class PenetrationRecovery {
   std::vector<char> pushed_;    // per body, whether a pseudo-impulse has reached it this step
   std::vector<double> lambda_;  // per contact, its pseudo-impulse so far
   std::vector<double> target_;  // per contact, the separating pseudo-velocity it asks for, m/s
+  // Per contact, n . K n with A's share alone, B's alone and both (NaN until a phase asks): each
+  // contact is in two phases, often with the same bodies moving in both.
+  std::vector<std::array<double, 3>> normal_mass_;
+  static constexpr std::array<double, 3> kNormalMassUnset = {std::numeric_limits<double>::quiet_NaN(),
+                                                             std::numeric_limits<double>::quiet_NaN(),
+                                                             std::numeric_limits<double>::quiet_NaN()};
+  int skipped_phases_ = 0;
+  bool skip_idle_phases_ = true;
   std::vector<int> all_;        // every contact of the step
   std::vector<PhaseContact> phase_;
   std::vector<PhaseContact> grouped_;  // phase_ by group
