@@ -5,24 +5,13 @@
 
 namespace boxpile {
 
-void ContactLoop::run(ImpulseStep& step) {
+void contact_loop(ImpulseStep& step) {
   SolverBodyArray& sb = step.resting;
   sb.gather(step.sb.bodies);
   const int passes = step.settings().contact_passes;
   const double dt = step.dt();
   assert(passes <= kMaxSolverPasses);
-  // The lab text's "remaining non-separating contacts in the original contact set": a point that
-  // separates, or whose gap stays open at its speed, by more than rounding takes no part (13% off
-  // the tumbling pile's step). Points at rest stay in, though their start may separate by
-  // rounding: left out, the loop pushed a card of the card house away from the one it leans on,
-  // and the house fell. Shock propagation, which follows, solves every contact of the bodies the
-  // ground supports again.
-  resting_.clear();
-  for (int k = 0; k < static_cast<int>(step.contacts.size()); ++k) {
-    SolverContact& c = step.contacts[k];
-    begin_resting_phase(c, sb.relative_velocity(c));
-    if (c.start_un <= allow_gap(c, 0.0, dt) + kRestingSpeed) resting_.push_back(k);
-  }
+  for (SolverContact& c : step.contacts) begin_resting_phase(c, sb.relative_velocity(c));
   for (int pass = 0; pass < passes; ++pass) {
     // e = -1 would leave velocities unchanged; the ramp starts one step above it and ends at 0,
     // slowing resting contacts gradually instead of stopping the first one met at full force.
@@ -31,8 +20,7 @@ void ContactLoop::run(ImpulseStep& step) {
     // The residual of a pass is the largest approach met in it, each contact measured just
     // before its impulse (free: the velocity is needed anyway).
     double residual = 0.0;
-    for (const int k : resting_) {
-      SolverContact& c = step.contacts[k];
+    for (SolverContact& c : step.contacts) {
       const Vec3 u = sb.relative_velocity(c);
       residual = std::max(residual, allow_gap(c, 0.0, dt) - c.n.dot(u));
       const double target = allow_gap(c, c.start_un < 0.0 ? -e * c.start_un : 0.0, dt);

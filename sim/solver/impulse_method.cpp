@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "boxpile/sim/solver/collision_loop.hpp"
+#include "boxpile/sim/solver/contact_loop.hpp"
 #include "boxpile/sim/solver/integrate.hpp"
 
 namespace boxpile {
@@ -31,7 +32,6 @@ ImpulseMethod::ImpulseMethod(std::size_t body_count) {
   const StepStorage storage{body_count};
   solver_contacts_.reserve(storage.contacts());
   resting_bodies_.reserve(body_count);
-  contact_loop_.reserve(storage);
   shock_.reserve(storage);
   recovery_.reserve(storage);
 }
@@ -57,8 +57,8 @@ void ImpulseMethod::step(StepContext& ctx) {
   integrate_momenta(ctx);
   enforce_wires(bodies, ctx.wires);
 
-  // 4. Contact loop: the contacts that do not separate, restitution ramped up to 0.
-  contact_loop_.run(step);
+  // 4. Contact loop: every contact of the set, restitution ramped up to 0.
+  contact_loop(step);
   ++ctx.counters.contact_loop_runs;
   enforce_wires(bodies, ctx.wires);
 

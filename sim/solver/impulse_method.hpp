@@ -4,7 +4,6 @@
 
 #include <vector>
 
-#include "boxpile/sim/solver/contact_loop.hpp"
 #include "boxpile/sim/solver/contact_method.hpp"
 #include "boxpile/sim/solver/impulse.hpp"
 #include "boxpile/sim/solver/recovery.hpp"
@@ -26,7 +25,6 @@ class ImpulseMethod final : public ContactMethod {
 
   std::vector<SolverContact> solver_contacts_;
   SolverBodyArray resting_bodies_;  // the resting phases' compact bodies
-  ContactLoop contact_loop_;
   ShockPropagation shock_;
   PenetrationRecovery recovery_;
   std::vector<Vec3> start_v_, start_omega_;  // velocities at the step's start (explicit Euler)

@@ -64,12 +64,6 @@ struct ImpulseStep {
 // steps: a level left unconverged starts the next step from a worse state.)
 inline constexpr double kRestingConverged = 1e-12;
 
-// A touching point approaching or separating slower than this (m/s) rests: what it has is rounding
-// left by the previous step's resting phases (they converge to 1e-9 m/s), not an impact for the
-// collision loop nor a separation the contact loop may leave alone. Far below the g dt = 0.04 m/s
-// a resting contact gains per step, so no impact is missed.
-inline constexpr double kRestingSpeed = 1e-6;
-
 // Speculative contacts: a point `gap` = -depth > 0 apart may approach at up to gap / dt in this
 // step without touching. Returns the lowest normal velocity the step allows, min(target, -gap/dt).
 inline double allow_gap(const SolverContact& c, double target, double dt) {
