@@ -15,8 +15,10 @@ set(boxpile_test_costs
   "Bullet's verdict on hard scene pyramid_10 stays as measured" 8
   "the hard catalogue stands under the penalty method" 32
   "our engine passes every check of hard scene jenga" 23
+  "our engine passes every check of example scene pile_100" 39
   "a pile of 100 falling boxes ends with overlaps below 2 mm" 24
   "our engine passes every check of hard scene pyramid_6" 18
+  "our engine passes every check of example scene pyramid" 9
   "ODE's verdict on hard scene pyramid_2d_20 stays as measured" 6
   "Bullet's verdict on hard scene pyramid_2d_20 stays as measured" 5
   "1,000 steps of pile_100 allocate nothing" 19
