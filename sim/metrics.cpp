@@ -20,12 +20,7 @@ double ground_depth(std::span<const OrientedBox> boxes, const HalfSpace& ground)
   return deepest;
 }
 
-double ground_depth(const RigidBody& body, const HalfSpace& ground) {
-  double deepest = -std::numeric_limits<double>::infinity();
-  for (int k = 0; k < static_cast<int>(body.shapes.size()); ++k)
-    deepest = std::max(deepest, box_plane_depth(OrientedBox::from(body.shape_pose(k), body.shapes[k].half_extents), ground));
-  return deepest;
-}
+double ground_depth(const RigidBody& body, const HalfSpace& ground) { return ground_depth(world_boxes(body), ground); }
 
 }  // namespace
 

@@ -57,14 +57,15 @@ void collide_body_ground(const PlacedBoxes& boxes, int ia, const HalfSpace& grou
   }
 }
 
+std::vector<OrientedBox> world_boxes(const RigidBody& body) {
+  std::vector<OrientedBox> boxes;
+  boxes.reserve(body.shapes.size());
+  for (int k = 0; k < static_cast<int>(body.shapes.size()); ++k) boxes.push_back(world_box(body, k));
+  return boxes;
+}
+
 double body_pair_depth(const RigidBody& a, const RigidBody& b) {
-  double deepest = -std::numeric_limits<double>::infinity();
-  for (int sa = 0; sa < static_cast<int>(a.shapes.size()); ++sa) {
-    const OrientedBox box_a = world_box(a, sa);
-    for (int sb = 0; sb < static_cast<int>(b.shapes.size()); ++sb)
-      deepest = std::max(deepest, -box_box_sat(box_a, world_box(b, sb)).separation);
-  }
-  return deepest;
+  return placed_pair_depth(world_boxes(a), world_boxes(b));
 }
 
 double placed_pair_depth(std::span<const OrientedBox> a, std::span<const OrientedBox> b) {
