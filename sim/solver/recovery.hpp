@@ -56,9 +56,9 @@ class PenetrationRecovery {
   bool may_change(int k, int a, int b) const {
     return target_[k] > 0.0 || lambda_[k] != 0.0 || (a >= 0 && pushed_[a]) || (b >= 0 && pushed_[b]);
   }
-  // n . K n of contact `c` (index k) over the bodies that move (at least one), formed once per run
-  // for each of A alone, B alone and both.
-  double normal_mass(const SolverContact& c, int k, bool a_moves, bool b_moves);
+  // n . K n of contacts[k] over the bodies that move (at least one), formed once per run for each
+  // of A alone, B alone and both.
+  double normal_mass(const std::vector<SolverContact>& contacts, int k, bool a_moves, bool b_moves);
 
   // One phase: `contacts` with bodies below `level` frozen (none without `shock`), solved as groups
   // that share no moving body, each by its passes until it converges.
