@@ -33,6 +33,12 @@ inline int test_samples(int fallback) {
   const char* s = std::getenv("BOXPILE_SAMPLES");
   return s ? std::atoi(s) : fallback;
 }
+// Steps of the long drift runs: BOXPILE_LONG_RUN_STEPS shortens them where every step costs tens
+// of times more (the sanitizer stage of .ci/run; the release stage runs them in full).
+inline int test_long_run_steps(int fallback) {
+  const char* s = std::getenv("BOXPILE_LONG_RUN_STEPS");
+  return s ? std::atoi(s) : fallback;
+}
 
 // The manifold has exactly the expected points, each matched by one contact within tol. For use
 // inside Catch2 tests (the file including this must include catch.hpp first).
