@@ -20,8 +20,6 @@ double ground_depth(std::span<const OrientedBox> boxes, const HalfSpace& ground)
   return deepest;
 }
 
-double ground_depth(const RigidBody& body, const HalfSpace& ground) { return ground_depth(world_boxes(body), ground); }
-
 }  // namespace
 
 Energy measure_energy(const std::vector<RigidBody>& bodies, const Vec3& gravity) {
@@ -65,16 +63,22 @@ Penetration measure_penetration(const std::vector<RigidBody>& bodies, const std:
 double measure_levitation(const std::vector<RigidBody>& bodies, const std::optional<HalfSpace>& ground,
                           const Vec3& gravity, double rest_speed) {
   const Vec3 down = gravity.norm() > 0.0 ? Vec3(gravity.normalized()) : Vec3(-Vec3::UnitZ());
+  // Every box placed once, not once per pair (as measure_penetration).
+  PlacedBoxes placed(bodies);
+  placed.place(bodies);
+  const int n = static_cast<int>(bodies.size());
   double worst = 0.0;
-  for (const RigidBody& b : bodies) {
+  for (int i = 0; i < n; ++i) {
+    const RigidBody& b = bodies[static_cast<std::size_t>(i)];
     if (b.fixed) continue;
-    const double size = body_aabb(b, 0.0).hi.maxCoeff() - body_aabb(b, 0.0).lo.minCoeff();
+    const Aabb bounds = boxes_aabb(placed.of(i), 0.0);
+    const double size = bounds.hi.maxCoeff() - bounds.lo.minCoeff();
     if (b.v.norm() > rest_speed || b.omega.norm() * size > rest_speed) continue;
     double gap = std::numeric_limits<double>::infinity();
-    if (ground) gap = -ground_depth(b, *ground);
-    for (const RigidBody& other : bodies) {
-      if (&other == &b || down.dot(other.x - b.x) <= 0.0) continue;  // only supports below
-      gap = std::min(gap, -body_pair_depth(b, other));
+    if (ground) gap = -ground_depth(placed.of(i), *ground);
+    for (int j = 0; j < n; ++j) {
+      if (j == i || down.dot(bodies[static_cast<std::size_t>(j)].x - b.x) <= 0.0) continue;  // only supports below
+      gap = std::min(gap, -placed_pair_depth(placed.of(i), placed.of(j)));
     }
     if (std::isfinite(gap)) worst = std::max(worst, gap);
   }

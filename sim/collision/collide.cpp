@@ -13,6 +13,14 @@ OrientedBox world_box(const RigidBody& body, int shape) {
   return OrientedBox::from(body.shape_pose(shape), body.shapes[shape].half_extents);
 }
 
+// Every box of the body placed at its current pose, in shape order (as PlacedBoxes places them).
+std::vector<OrientedBox> world_boxes(const RigidBody& body) {
+  std::vector<OrientedBox> boxes;
+  boxes.reserve(body.shapes.size());
+  for (int k = 0; k < static_cast<int>(body.shapes.size()); ++k) boxes.push_back(world_box(body, k));
+  return boxes;
+}
+
 void append(const Manifold& m, int ia, int ib, int sa, int sb, std::vector<BodyContact>& out) {
   for (const Contact& c : m) out.push_back({c, ia, ib, sa, sb});
 }
@@ -55,13 +63,6 @@ void collide_body_ground(const PlacedBoxes& boxes, int ia, const HalfSpace& grou
     collide_box_plane(a[sa], ground, settings.margin, m);
     append(m, ia, kGround, sa, 0, out);
   }
-}
-
-std::vector<OrientedBox> world_boxes(const RigidBody& body) {
-  std::vector<OrientedBox> boxes;
-  boxes.reserve(body.shapes.size());
-  for (int k = 0; k < static_cast<int>(body.shapes.size()); ++k) boxes.push_back(world_box(body, k));
-  return boxes;
 }
 
 double body_pair_depth(const RigidBody& a, const RigidBody& b) {

@@ -49,9 +49,6 @@ void collide_bodies(const PlacedBoxes& boxes, int ia, int ib, const CollisionSet
 void collide_body_ground(const PlacedBoxes& boxes, int ia, const HalfSpace& ground,
                          const CollisionSettings& settings, std::vector<BodyContact>& out);
 
-// Every box of the body placed at its current pose, in shape order (as PlacedBoxes places them).
-std::vector<OrientedBox> world_boxes(const RigidBody& body);
-
 // Deepest penetration between two bodies over all their shape pairs (exact SAT depth; negative
 // when separated: the largest separation found by the test, a lower bound on the gap).
 double body_pair_depth(const RigidBody& a, const RigidBody& b);
