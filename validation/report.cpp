@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/format_number.hpp"
 #include "boxpile/validation/json_output.hpp"
 #include "boxpile/validation/replay_data.hpp"
 #include "boxpile/validation/replay_page.hpp"
@@ -22,10 +23,7 @@ using nlohmann::json;
 constexpr std::size_t kBodiesListed = 3;
 
 std::string fmt(double x, const char* format = "%.4g") {
-  if (std::isnan(x)) return "nan";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, x);
-  return buf;
+  return std::isnan(x) ? "nan" : format_number(x, format);
 }
 
 std::string seconds(double t) { return fmt(t, "%.3f") + " s"; }

@@ -17,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void refuse(const fs::path& target, const std::string& why) {
+[[noreturn]] void refuse_report(const fs::path& target, const std::string& why) {
   throw ReportDirectoryError(target, why);
 }
 
@@ -26,14 +26,14 @@ void check_target(const fs::path& target, const std::vector<fs::path>& inputs,
   try {
     check_output_path(target, OutputKind::Directory, inputs);
   } catch (const OutputError& e) {
-    refuse(target, e.why());
+    refuse_report(target, e.why());
   }
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(target, ec))) return;
   const bool empty = fs::is_empty(target, ec);
-  if (ec) refuse(target, ec.message());
+  if (ec) refuse_report(target, ec.message());
   if (!empty && !fs::exists(target / marker)) {
-    refuse(target, "exists and holds no " + marker + ": not a boxpile report, so it is left alone; "
+    refuse_report(target, "exists and holds no " + marker + ": not a boxpile report, so it is left alone; "
                    "choose another directory");
   }
 }
@@ -42,7 +42,7 @@ void check_target(const fs::path& target, const std::vector<fs::path>& inputs,
 
 ReportDirectory::ReportDirectory(fs::path target, const std::vector<fs::path>& inputs, std::string marker)
     : target_(std::move(target)), marker_(std::move(marker)) {
-  if (target_.empty()) refuse(target_, "no directory given");
+  if (target_.empty()) refuse_report(target_, "no directory given");
   // "out/" names the directory "out": drop the trailing separator, so that its parent is found.
   if (!target_.has_filename()) target_ = target_.parent_path();
   check_target(target_, inputs, marker_);
@@ -50,14 +50,14 @@ ReportDirectory::ReportDirectory(fs::path target, const std::vector<fs::path>& i
   try {
     parent = prepare_parent(target_);
   } catch (const OutputError& e) {
-    refuse(target, e.why());
+    refuse_report(target, e.why());
   }
   try {
     Staging staging = create_staging(target_, parent, OutputKind::Directory);
     staging_ = std::move(staging.path);
     registration_ = std::move(staging.registration);
   } catch (const OutputError& e) {
-    refuse(target_, e.why());
+    refuse_report(target_, e.why());
   }
   // mkdtemp makes it private (0700); the report gets the permissions of any new directory.
   const mode_t mask = umask(0);
@@ -76,7 +76,7 @@ void ReportDirectory::commit() {
   std::error_code ec;
   if (!fs::exists(target_, ec)) {
     fs::rename(staging_, target_, ec);
-    if (ec) refuse(target_, "cannot rename the finished report into place: " + ec.message());
+    if (ec) refuse_report(target_, "cannot rename the finished report into place: " + ec.message());
     committed_ = true;
     return;
   }
@@ -92,12 +92,12 @@ void ReportDirectory::commit() {
   const HeldSignals held;
   const fs::path old = staging_.string() + "-old";
   fs::rename(target_, old, ec);
-  if (ec) refuse(target_, "cannot replace the previous report: " + ec.message());
+  if (ec) refuse_report(target_, "cannot replace the previous report: " + ec.message());
   fs::rename(staging_, target_, ec);
   if (ec) {
     std::error_code ignored;
     fs::rename(old, target_, ignored);  // put the previous report back
-    refuse(target_, "cannot rename the finished report into place: " + ec.message());
+    refuse_report(target_, "cannot rename the finished report into place: " + ec.message());
   }
   committed_ = true;
   fs::remove_all(old, ec);

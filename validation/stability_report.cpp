@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "boxpile/validation/format_number.hpp"
 #include "boxpile/validation/report_directory.hpp"
 
 namespace boxpile {
@@ -13,10 +14,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 std::string fmt(double x, const char* format = "%.3g") {
-  if (std::isnan(x)) return "nan";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, x);
-  return buf;
+  return std::isnan(x) ? "nan" : format_number(x, format);
 }
 
 // JSON has no NaN or infinity: such a value is written as null.

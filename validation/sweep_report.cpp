@@ -7,6 +7,7 @@
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/validation/format_number.hpp"
 #include "boxpile/validation/pareto.hpp"
 #include "boxpile/validation/report_directory.hpp"
 #include "boxpile/validation/sweep_plots.hpp"
@@ -20,10 +21,7 @@ namespace fs = std::filesystem;
 constexpr double kLevelsPerDecade = 1.0;
 
 std::string format(double x, const char* fmt = "%.3g") {
-  if (!std::isfinite(x)) return "—";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, x);
-  return buf;
+  return std::isfinite(x) ? format_number(x, fmt) : "—";
 }
 
 // Cheapest cell of `engine` (any engine when empty) whose error is at most `level`.

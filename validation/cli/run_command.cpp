@@ -12,6 +12,7 @@
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/engine_factory.hpp"
 #include "boxpile/validation/engine_settings.hpp"
+#include "boxpile/validation/format_number.hpp"
 #include "boxpile/validation/json_output.hpp"
 #include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/recording.hpp"
@@ -53,28 +54,24 @@ nlohmann::json solver_json(std::string_view method, const StepStats& st, const W
 // Runs at least this long show their progress on stderr.
 constexpr long kProgressMinSteps = 100'000;
 
-std::string format(double x, const char* fmt = "%.6g") {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, x);
-  return buf;
-}
-
 std::string format_vec(const Vec3& v) {
-  return "(" + format(v.x()) + ", " + format(v.y()) + ", " + format(v.z()) + ")";
+  return "(" + format_number(v.x(), "%.6g") + ", " + format_number(v.y(), "%.6g") + ", " +
+         format_number(v.z(), "%.6g") + ")";
 }
 
 void print_summary(const Scene& scene, std::string_view engine, long steps, double wall,
                    const std::vector<BodyState>& states, std::size_t contacts) {
   const double dt = scene.time.dt;
   std::cout << "scene " << scene.name << " (" << scene.source << "), engine " << engine << '\n'
-            << steps << " steps of " << format(dt) << " s (" << format(steps * dt) << " s simulated) in "
-            << format(wall, "%.3g") << " s wall, " << format(steps > 0 ? 1e6 * wall / steps : 0.0, "%.3g")
+            << steps << " steps of " << format_number(dt, "%.6g") << " s ("
+            << format_number(steps * dt, "%.6g") << " s simulated) in "
+            << format_number(wall, "%.3g") << " s wall, " << format_number(steps > 0 ? 1e6 * wall / steps : 0.0, "%.3g")
             << " us/step\n"
             << "contacts in the last step: " << contacts << '\n';
   if (states.size() <= kSummaryBodyLimit) {
     for (const BodyState& s : states) {
       std::cout << "  " << s.name << "  position " << format_vec(s.position) << "  speed "
-                << format(s.velocity.norm(), "%.3g") << " m/s\n";
+                << format_number(s.velocity.norm(), "%.3g") << " m/s\n";
     }
     return;
   }
@@ -85,8 +82,8 @@ void print_summary(const Scene& scene, std::string_view engine, long steps, doub
     return a.velocity.norm() < b.velocity.norm();
   });
   std::cout << "  " << states.size() << " bodies; highest " << highest->name << " at z = "
-            << format(highest->position.z()) << " m; fastest " << fastest->name << " at "
-            << format(fastest->velocity.norm(), "%.3g") << " m/s\n";
+            << format_number(highest->position.z(), "%.6g") << " m; fastest " << fastest->name << " at "
+            << format_number(fastest->velocity.norm(), "%.3g") << " m/s\n";
 }
 
 }  // namespace
@@ -203,9 +200,10 @@ int run_run(const RunOptions& options) {
     print_summary(scene, options.engine, loop.steps, loop.wall_seconds, states, contacts.size());
     StateMeter meter(scene);
     const FrameMetrics m = meter.measure(states);
-    std::cout << "energy " << format(m.energy.total(), "%.6g") << " J (kinetic " << format(m.energy.kinetic(), "%.3g")
-              << " J), deepest penetration " << format(m.penetration.depth, "%.3g") << " m, levitation "
-              << format(m.levitation, "%.3g") << " m\n";
+    std::cout << "energy " << format_number(m.energy.total(), "%.6g") << " J (kinetic "
+              << format_number(m.energy.kinetic(), "%.3g")
+              << " J), deepest penetration " << format_number(m.penetration.depth, "%.3g") << " m, levitation "
+              << format_number(m.levitation, "%.3g") << " m\n";
   }
   return loop.stopped ? kExitFailure : kExitOk;
 }

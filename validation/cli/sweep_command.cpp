@@ -12,6 +12,7 @@
 #include "boxpile/validation/cli/report_command.hpp"
 #include "boxpile/validation/data_directory.hpp"
 #include "boxpile/validation/engine_settings.hpp"
+#include "boxpile/validation/format_number.hpp"
 #include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/sweep_report.hpp"
 #include "boxpile/validation/sweep_runner.hpp"
@@ -24,15 +25,9 @@ namespace fs = std::filesystem;
 // The grids installed with boxpile, under its data folder.
 constexpr const char* kInstalledGrids = "benchmarks/grids";
 
-std::string format(double x, const char* fmt) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, x);
-  return buf;
-}
-
 std::string duration_text(double seconds) {
-  if (seconds < 120.0) return format(seconds, "%.0f s");
-  return format(seconds / 60.0, "%.1f min");
+  if (seconds < 120.0) return format_number(seconds, "%.0f s");
+  return format_number(seconds / 60.0, "%.1f min");
 }
 
 // One line per finished cell on stderr, with the time left estimated from the cells so far.
@@ -44,7 +39,7 @@ void print_progress(const SweepProgress& p) {
                      " elapsed, about " + duration_text(left) + " left";
   if (p.last) {
     line += ": " + p.last->scene + " " + p.last->spec.engine + " " + settings_label(p.last->spec.settings) +
-            " dt=" + format(p.last->spec.dt, "%.4g") + ": " + format(p.last->us_per_simulated_second, "%.4g") +
+            " dt=" + format_number(p.last->spec.dt, "%.4g") + ": " + format_number(p.last->us_per_simulated_second, "%.4g") +
             " µs/sim s" + (p.last->measures.passed ? "" : " (fails a check)");
   }
   std::cerr << line << '\n';
