@@ -17,13 +17,6 @@ constexpr double kRecoveryConverged = 0.05;
 // follows, is the one that can free it.
 constexpr double kRecoveryProgress = 0.95;
 constexpr int kRecoveryStallPasses = 3;
-// A pass records its largest |change| / inv_k_nn dt / slop. |change| (k_nn dt / slop), its scale
-// formed once per contact and phase, differs from that term by a few ulps: a contact whose product
-// is below this fraction of the largest so far cannot be the largest, and its two divisions are
-// skipped (the largest stays the same to the last bit; perf had them at some 15% of the passes).
-// While the largest is below kRecoveryTiny, where products may underflow, every term is divided out.
-constexpr double kRecoveryBelowLargest = 1.0 - 1e-9;
-constexpr double kRecoveryTiny = 1e-280;
 }  // namespace
 
 // The separating pseudo-velocity a contact asks for, beyond what the resolved velocities already
@@ -160,10 +153,8 @@ void PenetrationRecovery::solve_group(const ImpulseStep& step, std::span<const P
       const double lambda = std::max(0.0, lambda_[pc.index] + (target_[pc.index] - un) * pc.inv_k_nn);
       const double change = lambda - lambda_[pc.index];
       if (change == 0.0) continue;
-      // The pass's largest change, with its two divisions only where the term could be the largest.
-      const double scaled = std::abs(change) * pc.change_scale;
-      if (largest_change < kRecoveryTiny || !(scaled < kRecoveryBelowLargest * largest_change))
-        largest_change = std::max(largest_change, std::abs(change) / pc.inv_k_nn * step.dt() / c.slop);
+      // The change's velocity over the step, in slops: |change| (n . K n) dt / slop.
+      largest_change = std::max(largest_change, std::abs(change) * pc.change_scale);
       lambda_[pc.index] = lambda;
       const Vec3 impulse = change * c.n;
       if (pc.a_moves) push(c.a, impulse, c.ra);
