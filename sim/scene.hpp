@@ -37,6 +37,9 @@ struct CollisionSettings {
   bool reduce_to_four = false;
   // Points up to this far apart still count as contacts (speculative contacts), m.
   double margin = 0.0;
+  // Copy a pair's contacts from the last step while neither body has moved beyond rounding
+  // (sim/collision/contact_reuse.hpp); off, every pair is tested at every step.
+  bool reuse_contacts = true;
 };
 
 enum class ContactSolver { Impulse, Penalty };

@@ -28,6 +28,7 @@ World::World(const Scene& scene, std::string name)
   }
   const StepStorage storage{bodies_.size()};
   contacts_.reserve(storage.contacts());
+  reuse_.reserve(bodies_.size(), storage.contacts(), storage.pairs() + bodies_.size(), scene_.collision.reuse_contacts);
   events_.reserve(storage.events());
   broadphase_.reserve(storage);
 }
@@ -38,8 +39,8 @@ void World::step() {
   const double h = scene_.time.dt / substeps;
   for (int k = 0; k < substeps; ++k) {
     find_contacts(h);
-    StepContext ctx{scene_,  bodies_, ground_, contacts_, wires_, time_ + k * h,
-                    h,       counters_, stats_, events_};
+    StepContext ctx{scene_, bodies_,  ground_,  contacts_, reuse_.same_as_last_step(), wires_, time_ + k * h,
+                    h,      counters_, stats_,   events_};
     method_->step(ctx);
   }
   time_ += scene_.time.dt;
@@ -47,11 +48,13 @@ void World::step() {
 }
 
 void World::find_contacts(double dt) {
-  contacts_.clear();
+  reuse_.begin(bodies_, contacts_);
   update_margins(dt);
   placed_.place(bodies_);
   collide_body_pairs();
   collide_ground();
+  counters_.pairs_found += static_cast<std::uint64_t>(reuse_.found_pairs());
+  counters_.pairs_reused += static_cast<std::uint64_t>(reuse_.reused_pairs());
 }
 
 void World::update_margins(double dt) {
@@ -76,9 +79,11 @@ void World::collide_body_pairs() {
   CollisionSettings cs = scene_.collision;
   for (const auto& [i, j] : broadphase_.find_pairs(bounds_, fixed_)) {
     ++counters_.broadphase_pairs;
-    counters_.narrowphase_calls += bodies_[i].shapes.size() * bodies_[j].shapes.size();
     cs.margin = margins_[i] + margins_[j] - std::max(base_margins_[i], base_margins_[j]);
-    collide_bodies(placed_, i, j, cs, contacts_);
+    reuse_.pair(i, j, cs.margin, contacts_, [&] {
+      counters_.narrowphase_calls += bodies_[i].shapes.size() * bodies_[j].shapes.size();
+      collide_bodies(placed_, i, j, cs, contacts_);
+    });
   }
 }
 
@@ -87,9 +92,11 @@ void World::collide_ground() {
   CollisionSettings cs = scene_.collision;
   for (int i = 0; i < static_cast<int>(bodies_.size()); ++i) {
     if (bodies_[i].fixed) continue;
-    counters_.narrowphase_calls += bodies_[i].shapes.size();
     cs.margin = margins_[i];
-    collide_body_ground(placed_, i, *scene_.ground, cs, contacts_);
+    reuse_.pair(i, kGround, cs.margin, contacts_, [&] {
+      counters_.narrowphase_calls += bodies_[i].shapes.size();
+      collide_body_ground(placed_, i, *scene_.ground, cs, contacts_);
+    });
   }
 }
 

@@ -11,6 +11,7 @@
 #include "boxpile/sim/body.hpp"
 #include "boxpile/sim/collision/broadphase.hpp"
 #include "boxpile/sim/collision/collide.hpp"
+#include "boxpile/sim/collision/contact_reuse.hpp"
 #include "boxpile/sim/engine.hpp"
 #include "boxpile/sim/scene.hpp"
 #include "boxpile/sim/step_storage.hpp"
@@ -62,6 +63,7 @@ class World final : public Engine {
   SweepAndPrune broadphase_;
   PlacedBoxes placed_;  // every body's boxes in the world, placed once per contact search
   std::vector<BodyContact> contacts_;
+  ContactReuse reuse_;  // the contacts of bodies at rest, kept from the last step
   std::vector<WireJoint> wires_;
   std::unique_ptr<ContactMethod> method_;
   std::vector<double> margins_;          // per body, this step's speculative margin, m

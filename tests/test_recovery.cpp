@@ -28,6 +28,7 @@ struct Stack {
   std::vector<RigidBody> bodies;
   RigidBody ground;
   std::vector<BodyContact> found;  // not read by the stages under test
+  std::vector<char> same;          // nor this
   std::vector<WireJoint> wires;
   WorldCounters counters;
   StepStats stats;
@@ -77,7 +78,7 @@ struct Stack {
 
   // Shock propagation's levels, then recovery with or without skipping idle phases.
   void solve(bool skip_idle) {
-    StepContext ctx{scene, bodies, ground, found, wires, 0.0, kDt, counters, stats, events};
+    StepContext ctx{scene, bodies, ground, found, same, wires, 0.0, kDt, counters, stats, events};
     ImpulseStep step{ctx, SolverBodies{bodies, ground}, resting, contacts};
     shock.run(step);
     recovery.skip_idle_phases(skip_idle);

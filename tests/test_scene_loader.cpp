@@ -108,7 +108,7 @@ TEST_CASE("a full scene loads with every value", "[scene]") {
     ],
     "solver": {"method": "impulse", "collision_passes": 7, "contact_passes": 15.0,
                "shock_propagation": false, "integrator": "semi_implicit_euler"},
-    "collision": {"reduce_to_four": true, "margin": 0.01},
+    "collision": {"reduce_to_four": true, "margin": 0.01, "reuse_contacts": false},
     "time": {"dt": 0.002, "duration": 2.5},
     "allow_initial_overlap": false
   })", kSource);
@@ -163,6 +163,7 @@ TEST_CASE("a full scene loads with every value", "[scene]") {
   CHECK(s.solver.integrator == PositionIntegrator::SemiImplicitEuler);
   CHECK(s.collision.reduce_to_four);
   CHECK(s.collision.margin == 0.01);
+  CHECK_FALSE(s.collision.reuse_contacts);
   CHECK(s.time.dt == 0.002);
   CHECK(s.time.duration == 2.5);
   CHECK_FALSE(s.allow_initial_overlap);
@@ -194,6 +195,7 @@ TEST_CASE("a minimal scene gets the documented defaults", "[scene]") {
   CHECK(s.solver.integrator == PositionIntegrator::SemiImplicitEuler);
   CHECK_FALSE(s.collision.reduce_to_four);
   CHECK(s.collision.margin == 0.0);
+  CHECK(s.collision.reuse_contacts);
   CHECK_FALSE(s.allow_initial_overlap);
 
   const BodyDesc& b = s.bodies.at(0);

@@ -35,6 +35,9 @@ constexpr std::array<std::string_view, 2> kOdeSteppers = {"quickstep", "world"};
 const EngineSetting kReduceToFour{
     "reduce_to_four", Kind::Boolean, "", "reduce each box-box manifold to at most 4 points", 0, 0, {},
     [](EngineConfig& c, const json& v) { c.scene.collision.reduce_to_four = v.get<bool>(); }};
+const EngineSetting kReuseContacts{
+    "reuse_contacts", Kind::Boolean, "", "copy a pair's contacts from the last step while neither body moves beyond rounding (1e-12)", 0, 0,
+    {}, [](EngineConfig& c, const json& v) { c.scene.collision.reuse_contacts = v.get<bool>(); }};
 const EngineSetting kCollisionMargin{
     "collision_margin", Kind::Number, "m", "points up to this far apart count as contacts (speculative contacts)", 0,
     kMaxLength, {}, [](EngineConfig& c, const json& v) { c.scene.collision.margin = v.get<double>(); }};
@@ -70,6 +73,7 @@ const std::array kImpulseSettings = {
                   }},
     kReduceToFour,
     kCollisionMargin,
+    kReuseContacts,
 };
 
 // Our penalty method (the scene's penalty keys in `solver`, docs/penalty.md); each one left out
@@ -87,6 +91,7 @@ const std::array kPenaltySettings = {
                   [](EngineConfig& c, const json& v) { c.scene.solver.penalty.substeps = v.get<int>(); }},
     kReduceToFour,
     kCollisionMargin,
+    kReuseContacts,
 };
 
 // "own" runs each scene's method: every setting of either method (load_grid checks that a
@@ -94,7 +99,7 @@ const std::array kPenaltySettings = {
 const std::vector<EngineSetting> kOwnSettings = [] {
   std::vector<EngineSetting> all(kImpulseSettings.begin(), kImpulseSettings.end());
   for (const EngineSetting& s : kPenaltySettings) {
-    if (s.key != kReduceToFour.key && s.key != kCollisionMargin.key) all.push_back(s);
+    if (s.key != kReduceToFour.key && s.key != kCollisionMargin.key && s.key != kReuseContacts.key) all.push_back(s);
   }
   return all;
 }();

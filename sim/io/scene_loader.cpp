@@ -186,9 +186,10 @@ SolverSettings read_solver(const JsonNode& node) {
 }
 
 CollisionSettings read_collision(const JsonNode& node) {
-  node.expect_object({"reduce_to_four", "margin"});
+  node.expect_object({"reduce_to_four", "margin", "reuse_contacts"});
   CollisionSettings c;
   c.reduce_to_four = node.boolean_or("reduce_to_four", c.reduce_to_four);
+  c.reuse_contacts = node.boolean_or("reuse_contacts", c.reuse_contacts);
   if (const auto m = node.find("margin")) c.margin = read_margin(*m);
   return c;
 }

@@ -31,6 +31,7 @@ ImpulseMethod::ImpulseMethod(std::size_t body_count) {
   start_omega_.resize(body_count);
   const StepStorage storage{body_count};
   solver_contacts_.reserve(storage.contacts());
+  prepared_k_.reserve(storage.contacts());
   resting_bodies_.reserve(body_count);
   shock_.reserve(storage);
   recovery_.reserve(storage);
@@ -81,16 +82,32 @@ void ImpulseMethod::step(StepContext& ctx) {
 }
 
 void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
-  solver_contacts_.clear();
+  // Last step's solver contacts stay in place: a contact the world kept from the last step at the
+  // same index keeps its offsets and collision matrices (its bodies have not moved beyond
+  // rounding since they were formed) and only takes back its K over both bodies.
+  const std::size_t count = ctx.contacts.size();
+  const std::size_t kept = std::min(solver_contacts_.size(), count);
+  solver_contacts_.resize(count);
+  prepared_k_.resize(count);
   // A pair's contacts come one after another: its slop and material are found once per pair.
   PairTerms pair;
-  for (const BodyContact& bc : ctx.contacts) {
+  for (std::size_t k = 0; k < count; ++k) {
+    SolverContact& c = solver_contacts_[k];
+    if (k < kept && ctx.same_as_last_step[k]) {
+      const CollisionMatrix& m = prepared_k_[k];
+      c.K = m.K;
+      c.Kinv = m.Kinv;
+      c.Kinv_n = m.Kinv_n;
+      c.Kinv_n_size = m.Kinv_n_size;
+      continue;
+    }
+    const BodyContact& bc = ctx.contacts[k];
     const RigidBody& a = ctx.bodies[bc.body_a];
     const RigidBody& b = bc.body_b == kGround ? ctx.ground : ctx.bodies[bc.body_b];
     if (bc.body_a != pair.a || bc.body_b != pair.b) pair = pair_terms(ctx.scene.solver, bc.body_a, bc.body_b, a, b);
     // Filled where it stays: a SolverContact is some 600 bytes, and copying each one into the
     // set cost a quarter of this function (perf, Jenga tower).
-    SolverContact& c = solver_contacts_.emplace_back();
+    c = SolverContact{};
     c.a = bc.body_a;
     c.b = bc.body_b;
     c.n = bc.contact.normal;
@@ -108,6 +125,7 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
     c.Ka = Ka;
     c.Kb = Kb;
     set_collision_matrix(c, Ka + Kb);
+    prepared_k_[k] = {c.K, c.Kinv, c.Kinv_n, c.Kinv_n_size};
   }
 }
 

@@ -24,6 +24,14 @@ class ImpulseMethod final : public ContactMethod {
   void integrate_positions(StepContext& ctx);
 
   std::vector<SolverContact> solver_contacts_;
+  // Per solver contact, its collision matrix over both bodies as prepared: shock propagation leaves
+  // some contacts with a moving body's share alone, and a contact kept from the last step
+  // (StepContext::same_as_last_step) takes this one back instead of inverting K again.
+  struct CollisionMatrix {
+    Mat3 K, Kinv;
+    Vec3 Kinv_n, Kinv_n_size;
+  };
+  std::vector<CollisionMatrix> prepared_k_;
   SolverBodyArray resting_bodies_;  // the resting phases' compact bodies
   ShockPropagation shock_;
   PenetrationRecovery recovery_;

@@ -31,6 +31,8 @@ struct WorldCounters {
   std::uint64_t steps = 0;
   std::uint64_t broadphase_pairs = 0;     // pairs the broadphase passed on
   std::uint64_t narrowphase_calls = 0;    // box-box and box-plane tests run
+  std::uint64_t pairs_found = 0;          // body pairs (and body-ground pairs) whose contacts were found
+  std::uint64_t pairs_reused = 0;         // those copied from the last step instead (ContactReuse)
   std::uint64_t collision_loop_runs = 0;
   std::uint64_t contact_loop_runs = 0;
   std::uint64_t shock_propagation_runs = 0;
@@ -78,6 +80,9 @@ struct StepContext {
   std::vector<RigidBody>& bodies;
   const RigidBody& ground;                  // a fixed body standing for the half-space
   const std::vector<BodyContact>& contacts;  // found at the start of this step
+  // Per contact, 1 when it is the last step's contact at the same index, found at poses within
+  // ContactReuse::kPoseTolerance of both bodies' present ones (what was derived from it holds).
+  const std::vector<char>& same_as_last_step;
   const std::vector<WireJoint>& wires;
   double time = 0.0;  // s, at the step's start
   double dt = 0.0;    // s, this step's length (a penalty substep is a step of its own)
