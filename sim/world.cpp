@@ -77,7 +77,8 @@ void World::collide_body_pairs() {
     fixed_[i] = bodies_[i].fixed;
   }
   CollisionSettings cs = scene_.collision;
-  for (const auto& [i, j] : broadphase_.find_pairs(bounds_, fixed_)) {
+  for (const auto& pair : broadphase_.find_pairs(bounds_, fixed_)) {
+    const int i = pair.first, j = pair.second;  // named: clang 14 cannot capture a structured binding
     ++counters_.broadphase_pairs;
     cs.margin = margins_[i] + margins_[j] - std::max(base_margins_[i], base_margins_[j]);
     reuse_.pair(i, j, cs.margin, contacts_, [&] {

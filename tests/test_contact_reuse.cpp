@@ -1,6 +1,6 @@
 // Contacts of bodies at rest kept from one step to the next (sim/collision/contact_reuse.hpp):
 // copied only while both bodies stay within the tolerance of the poses they were found at, at the
-// same margin and the same place in the search, and a run that keeps them is the run that finds
+// same margin and about the same place in the search, and a run that keeps them is the run that finds
 // them again, to far below anything a contact can tell.
 #include <catch2/catch.hpp>
 
@@ -44,7 +44,7 @@ struct Search {
             const std::vector<int>& points, double step_no, double margin = 0.01) {
     reuse.begin(bodies, contacts);
     for (std::size_t k = 0; k < pairs.size(); ++k) {
-      const auto [a, b] = pairs[k];
+      const int a = pairs[k].first, b = pairs[k].second;
       reuse.pair(a, b, margin, contacts, [&] {
         ++finds;
         for (int p = 0; p < points[k]; ++p) contacts.push_back(contact(a, b, step_no));
@@ -119,9 +119,28 @@ TEST_CASE("a copied contact is the same as last step's only where it keeps its i
   CHECK(std::count(same.begin(), same.begin() + 4, 1) == 4);
   CHECK(std::count(same.begin() + 4, same.end(), 1) == 0);
 
-  // A pair asked at another place in the search is found again.
+  // The same pairs asked in another order: each is still copied (last step's search had it a few
+  // places away), but none lands at its index of last step.
   s.step(bodies, {{0, 2}, {0, kGround}, {1, kGround}}, {4, 4, 3}, 3.0);
-  CHECK(s.reuse.found_pairs() == 3);
+  CHECK(s.reuse.reused_pairs() == 3);
+  CHECK(std::count(s.reuse.same_as_last_step().begin(), s.reuse.same_as_last_step().end(), 1) == 0);
+}
+
+TEST_CASE("a pair is looked for within 16 places of where last step's search had it", "[contacts][reuse]") {
+  std::vector<RigidBody> bodies;
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < 20; ++i) {
+    bodies.push_back(unit_box(Vec3(2.0 * i, 0, 0.5)));
+    pairs.emplace_back(i, kGround);
+  }
+  Search s;
+  s.reuse.reserve(bodies.size(), 64, 32, true);
+  s.step(bodies, pairs, std::vector<int>(20, 1), 1.0);
+  // In reverse order, pair k moves |19 - 2k| places: the four that move 17 or 19 are found again.
+  std::reverse(pairs.begin(), pairs.end());
+  s.step(bodies, pairs, std::vector<int>(20, 1), 2.0);
+  CHECK(s.reuse.found_pairs() == 4);
+  CHECK(s.reuse.reused_pairs() == 16);
 }
 
 TEST_CASE("a run that keeps contacts at rest is the run that finds them at every step", "[contacts][reuse]") {
@@ -143,14 +162,29 @@ TEST_CASE("a run that keeps contacts at rest is the run that finds them at every
   INFO(path);
   CHECK(largest_distance(kept, found) < 1e-9);
   CHECK(found.counters().pairs_reused == 0);
+  CHECK(found.counters().same_contact_sets == 0);
   if (path == "scenes/incline_slide.json") {
     CHECK(kept.counters().pairs_reused == 0);  // the sliding box moves at every step
   } else {
-    // Every pair copied over the last second.
+    // Over the last second every pair copied, and every step's contact set the last step's (shock
+    // propagation keeps its levels and groups).
     const auto reused_before = kept.counters().pairs_reused;
     const auto found_before = kept.counters().pairs_found;
-    for (long k = 0; k < step_count(s.time.dt, 1.0); ++k) kept.step();
-    CHECK(kept.counters().pairs_found == found_before);
-    CHECK(kept.counters().pairs_reused > reused_before);
+    const auto sets_before = kept.counters().same_contact_sets;
+    const long last_second = step_count(s.time.dt, 1.0);
+    for (long k = 0; k < last_second; ++k) kept.step();
+    const auto found = kept.counters().pairs_found - found_before;
+    const auto reused = kept.counters().pairs_reused - reused_before;
+    const auto same_sets = kept.counters().same_contact_sets - sets_before;
+    if (path == "hard/jenga.json") {
+      // The tower's upper layers creep together by some 2e-15 m a step: every few hundred steps
+      // they pass the tolerance and their pairs (a fifth of the tower's) are found again.
+      CHECK(found * 100 <= found + reused);
+      CHECK(same_sets * 100 >= 95 * static_cast<std::uint64_t>(last_second));
+    } else {
+      CHECK(found == 0);
+      CHECK(same_sets == static_cast<std::uint64_t>(last_second));
+    }
+    CHECK(reused > 0);
   }
 }

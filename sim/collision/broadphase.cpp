@@ -1,6 +1,7 @@
 #include "boxpile/sim/collision/broadphase.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 
@@ -41,6 +42,7 @@ Aabb boxes_aabb(std::span<const OrientedBox> boxes, double margin) {
 
 void SweepAndPrune::reserve(const StepStorage& storage) {
   order_.reserve(storage.bodies);
+  key_.reserve(storage.bodies);
   pairs_.reserve(storage.pairs());
 }
 
@@ -57,19 +59,21 @@ const std::vector<std::pair<int, int>>& SweepAndPrune::find_pairs(const std::vec
 
 void SweepAndPrune::sort_by_lower_x(const std::vector<Aabb>& boxes) {
   const int n = static_cast<int>(boxes.size());
-  auto lo_x = [&](int i) { return boxes[i].lo.x(); };
+  key_.resize(boxes.size());
+  for (int i = 0; i < n; ++i) key_[i] = std::round(boxes[i].lo.x() / kOrderGrain);
+  // A strict order: the same keys give the same order whatever the last call's was.
+  auto before = [&](int a, int b) { return key_[a] < key_[b] || (key_[a] == key_[b] && a < b); };
   if (static_cast<int>(order_.size()) != n) {
     // First call (or the body count changed): a full sort, O(n log n) whatever the scene order.
     order_.resize(boxes.size());
     std::iota(order_.begin(), order_.end(), 0);
-    std::sort(order_.begin(), order_.end(), [&](int a, int b) { return lo_x(a) < lo_x(b); });
+    std::sort(order_.begin(), order_.end(), before);
   }
   // Nearly sorted from the last call: each body moves a few places at most.
   for (int i = 1; i < n; ++i) {
     const int moving = order_[i];
-    const double key = lo_x(moving);
     int j = i - 1;
-    while (j >= 0 && lo_x(order_[j]) > key) {
+    while (j >= 0 && before(moving, order_[j])) {
       order_[j + 1] = order_[j];
       --j;
     }
@@ -89,7 +93,9 @@ const std::vector<std::pair<int, int>>& SweepAndPrune::find_pairs(const std::vec
     for (int t = s + 1; t < n; ++t) {
       const int j = order_[t];
       const Aabb& bj = boxes[j];
-      if (bj.lo.x() > bi.hi.x()) break;
+      // Sorted by rounded bounds, a later box's lower x is at most a grain below this one's (two,
+      // for the rounding of the division).
+      if (bj.lo.x() > bi.hi.x() + 2.0 * kOrderGrain) break;
       if (fixed[i] && fixed[j]) continue;
       if (bi.overlaps(bj)) pairs_.emplace_back(std::min(i, j), std::max(i, j));
     }

@@ -43,12 +43,22 @@ class SweepAndPrune {
                                                      const std::vector<char>& fixed);
 
  private:
-  // Sorts order_ by the boxes' lower x bound: insertion sort from the last call's order.
+  // The sweep's order compares lower x bounds rounded to the nearest multiple of this grain (m),
+  // ties by body index: bodies at rest, whose bounds move by rounding alone, keep their order from
+  // step to step (as do the pairs it yields and their contacts: contact_reuse.hpp), where exact
+  // bounds would swap two bodies whose lower x are equal (a stack, a Jenga tower) at random.
+  // (Rounded down instead, a bound on a round coordinate such as -0.75 m sat on a cell's edge and
+  // its rounding jitter flipped its cell.) The sweep ends a box's scan two grains later to make up
+  // for the rounding, so no overlapping pair is missed.
+  static constexpr double kOrderGrain = 1e-9;
+  // Sorts order_ by the boxes' lower x bound in grains and index: insertion sort from the last
+  // call's order.
   void sort_by_lower_x(const std::vector<Aabb>& boxes);
 
   std::vector<Aabb> boxes_;  // the bodies' boxes, for the first overload
   std::vector<char> fixed_;  // the bodies' fixed flags, for the first overload
   std::vector<int> order_;
+  std::vector<double> key_;  // per body, its lower x bound in grains, rounded to the nearest
   std::vector<std::pair<int, int>> pairs_;
 };
 

@@ -35,8 +35,8 @@ class ContactReuse {
   void begin(const std::vector<RigidBody>& bodies, std::vector<BodyContact>& contacts);
 
   // Appends the contacts of the pair (a, b) (b = kGround for the ground) at `margin` to `out`:
-  // copied from last step when the pair is last step's pair at the same place in the search with
-  // both bodies within the tolerance and the same margin, else found by `find` (which appends them).
+  // copied from last step when last step's search had the pair at about the same place, with both
+  // bodies within the tolerance and the same margin, else found by `find` (which appends them).
   // Pairs must be asked in the order of the search.
   template <class Find>
   void pair(int a, int b, double margin, std::vector<BodyContact>& out, Find&& find);
@@ -56,6 +56,20 @@ class ContactReuse {
     int first = 0, count = 0;  // its contacts in the set
   };
   std::uint32_t stamp(int body) const { return body == kGround ? 0 : stamp_[static_cast<std::size_t>(body)]; }
+  // Last step's record of the pair (a, b), looked for at `place` in last step's search and then
+  // within kSearchWindow places either side (a body that crossed another in the broadphase's order
+  // moves the pairs after it by a few places); nullptr when it is not there.
+  static constexpr std::size_t kSearchWindow = 16;
+  const Pair* last_step_pair(int a, int b, std::size_t place) const {
+    const std::size_t n = last_pairs_.size();
+    auto is = [&](std::size_t k) { return k < n && last_pairs_[k].a == a && last_pairs_[k].b == b; };
+    if (is(place)) return &last_pairs_[place];
+    for (std::size_t d = 1; d <= kSearchWindow; ++d) {
+      if (is(place + d)) return &last_pairs_[place + d];
+      if (place >= d && is(place - d)) return &last_pairs_[place - d];
+    }
+    return nullptr;
+  }
 
   std::vector<Vec3> ref_x_;
   std::vector<Quat> ref_q_;
@@ -71,10 +85,9 @@ class ContactReuse {
 template <class Find>
 void ContactReuse::pair(int a, int b, double margin, std::vector<BodyContact>& out, Find&& find) {
   const int first = static_cast<int>(out.size());
-  const std::size_t place = cursor_++;
-  const Pair* last = place < last_pairs_.size() ? &last_pairs_[place] : nullptr;
-  const bool same_pair = enabled_ && last != nullptr && last->a == a && last->b == b && last->stamp_a == stamp(a) &&
-                         last->stamp_b == stamp(b) && std::abs(last->margin - margin) <= kPoseTolerance;
+  const Pair* last = enabled_ ? last_step_pair(a, b, cursor_++) : nullptr;
+  const bool same_pair = last != nullptr && last->stamp_a == stamp(a) && last->stamp_b == stamp(b) &&
+                         std::abs(last->margin - margin) <= kPoseTolerance;
   Pair p{a, b, stamp(a), stamp(b), margin, first, 0};
   if (same_pair) {
     const auto from = last_contacts_.begin() + last->first;

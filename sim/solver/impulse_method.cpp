@@ -47,6 +47,7 @@ void ImpulseMethod::step(StepContext& ctx) {
 
   // 1. The contact set (found by the world), as the solver sees it through the whole step.
   prepare_solver_contacts(ctx);
+  if (same_set_) ++ctx.counters.same_contact_sets;
   ImpulseStep step{ctx, SolverBodies{bodies, ctx.ground}, resting_bodies_, solver_contacts_};
   ctx.stats = StepStats{};
 
@@ -65,7 +66,7 @@ void ImpulseMethod::step(StepContext& ctx) {
 
   // 5. Shock propagation: from the ground up, each level frozen once solved.
   if (s.shock_propagation) {
-    shock_.run(step);
+    shock_.run(step, same_set_);
     ++ctx.counters.shock_propagation_runs;
   }
   enforce_wires(bodies, ctx.wires);
@@ -87,13 +88,16 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
   // rounding since they were formed) and only takes back its K over both bodies.
   const std::size_t count = ctx.contacts.size();
   const std::size_t kept = std::min(solver_contacts_.size(), count);
+  same_set_ = count > 0 && count == solver_contacts_.size();
   solver_contacts_.resize(count);
   prepared_k_.resize(count);
   // A pair's contacts come one after another: its slop and material are found once per pair.
   PairTerms pair;
   for (std::size_t k = 0; k < count; ++k) {
     SolverContact& c = solver_contacts_[k];
-    if (k < kept && ctx.same_as_last_step[k]) {
+    const bool same = k < kept && ctx.same_as_last_step[k];
+    same_set_ = same_set_ && same;
+    if (same) {
       const CollisionMatrix& m = prepared_k_[k];
       c.K = m.K;
       c.Kinv = m.Kinv;

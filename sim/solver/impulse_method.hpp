@@ -32,6 +32,9 @@ class ImpulseMethod final : public ContactMethod {
     Vec3 Kinv_n, Kinv_n_size;
   };
   std::vector<CollisionMatrix> prepared_k_;
+  // Whether this step's contact set is the last step's, contact for contact (every contact kept at
+  // its index): shock propagation then keeps its levels and groups.
+  bool same_set_ = false;
   SolverBodyArray resting_bodies_;  // the resting phases' compact bodies
   ShockPropagation shock_;
   PenetrationRecovery recovery_;

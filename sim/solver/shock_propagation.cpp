@@ -107,17 +107,25 @@ void ShockPropagation::reserve(const StepStorage& storage) {
   level_contacts_.reserve(storage.contacts());
   group_contacts_.reserve(storage.contacts());
   groups_.reserve(storage.bodies, storage.contacts());
+  grouped_.reserve(storage.contacts());
+  group_start_.reserve(storage.contacts() + 1);
+  level_group_.reserve(storage.bodies + 2);
   active_.reserve(storage.bodies);
 }
 
-void ShockPropagation::run(ImpulseStep& step) {
-  build_graph(step);
-  assign_levels(step);
-  group_contacts_by_level(step);
+void ShockPropagation::run(ImpulseStep& step, bool same_contacts) {
+  if (!same_contacts) {
+    build_graph(step);
+    assign_levels(step);
+    group_contacts_by_level(step);
+    grouped_.clear();
+    group_start_.assign(1, 0);
+    level_group_.assign(1, 0);
+  }
   // Solve level by level with e = 0; bodies below the level are frozen (infinite mass), so
   // nothing pushes back down the pile and the stack's weight is carried by the ground.
   step.resting.gather(step.sb.bodies);
-  for (int l = 0; l <= top_; ++l) solve_level(step, l);
+  for (int l = 0; l <= top_; ++l) solve_level(step, l, same_contacts);
   step.resting.scatter(step.sb.bodies);
   step.stats().shock_levels = top_ + 1;
   step.stats().residual_after_shock = approach_residual(step.sb, step.contacts, step.dt());
@@ -197,16 +205,27 @@ double ShockPropagation::frozen_target(const SolverBodyArray& sb, const SolverCo
   return 0.0;
 }
 
-void ShockPropagation::solve_level(ImpulseStep& step, int l) {
+void ShockPropagation::solve_level(ImpulseStep& step, int l, bool same_contacts) {
   SolverBodyArray& sb = step.resting;
   // A frozen body keeps its velocity through the level, so each contact's target is set once.
-  level_contacts_.clear();
-  for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
-    const SolverContact& c = step.contacts[by_level_[k]];
-    const bool a_moves = moves(c.a, l), b_moves = moves(c.b, l);
-    level_contacts_.push_back({by_level_[k], a_moves, b_moves, allow_gap(c, frozen_target(sb, c, l), step.dt())});
+  if (same_contacts) {
+    // The last run's groups of the level, their contacts in the same order: only the targets,
+    // which read the frozen bodies' velocities, are new.
+    for (int k = group_start_[level_group_[l]]; k < group_start_[level_group_[l + 1]]; ++k) {
+      LevelContact& lc = grouped_[k];
+      lc.target = allow_gap(step.contacts[lc.index], frozen_target(sb, step.contacts[lc.index], l), step.dt());
+    }
+  } else {
+    level_contacts_.clear();
+    for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
+      const SolverContact& c = step.contacts[by_level_[k]];
+      const bool a_moves = moves(c.a, l), b_moves = moves(c.b, l);
+      level_contacts_.push_back({by_level_[k], a_moves, b_moves, allow_gap(c, frozen_target(sb, c, l), step.dt())});
+    }
+    group_level_contacts(step);
   }
-  group_level_contacts(step);
+  level_first_group_ = level_group_[l];
+  level_group_count_ = level_group_[l + 1] - level_group_[l];
   solve_groups(step);
 }
 
@@ -270,7 +289,7 @@ void ShockPropagation::solve_groups(ImpulseStep& step) {
 double ShockPropagation::solve_sticking_groups(ImpulseStep& step) {
   // Each group of bodies on frozen supports solved directly when every touching point can stick
   // (sticking_solve.hpp); the groups it declines stay active for the passes.
-  const int groups = groups_.count();
+  const int groups = level_groups();
   double worst = -1.0;
   active_.clear();
   for (int g = 0; g < groups; ++g) {
@@ -301,6 +320,10 @@ void ShockPropagation::group_level_contacts(const ImpulseStep& step) {
     return MovingBodies::of(c.a, c.b, lc.a_moves, lc.b_moves);
   };
   groups_.sort(std::span<const LevelContact>(level_contacts_), step.sb.bodies.size(), moving, group_contacts_);
+  grouped_.insert(grouped_.end(), group_contacts_.begin(), group_contacts_.end());
+  for (int g = 0; g < groups_.count(); ++g)
+    group_start_.push_back(group_start_.back() + static_cast<int>(groups_.group(group_contacts_, g).size()));
+  level_group_.push_back(static_cast<int>(group_start_.size()) - 1);
 }
 
 }  // namespace boxpile

@@ -21,7 +21,10 @@ class ShockPropagation {
  public:
   // Sizes the graph, the levels and the queue for `storage.bodies` bodies and their contacts.
   void reserve(const StepStorage& storage);
-  void run(ImpulseStep& step);
+  // `same_contacts`: the step's contact set is the last run's, contact for contact (every one kept
+  // from the last step at its index: StepContext::same_as_last_step), so the graph, the levels and
+  // each level's groups are the last run's too and are not formed again.
+  void run(ImpulseStep& step, bool same_contacts = false);
   // Level of each body in the last run (-1: fixed; kUnsupported: not connected to the ground).
   const std::vector<int>& levels() const { return level_; }
   static constexpr int kUnsupported = 1 << 30;
@@ -48,10 +51,11 @@ class ShockPropagation {
   void build_graph(const ImpulseStep& step);
   void assign_levels(const ImpulseStep& step);
   void group_contacts_by_level(const ImpulseStep& step);
-  void solve_level(ImpulseStep& step, int level);
+  // With `same_contacts`, the level's groups are the last run's, their targets set again.
+  void solve_level(ImpulseStep& step, int level, bool same_contacts);
   // The level's contacts sorted into groups that share no moving body, so that each group leaves
   // the passes once it has converged (a pyramid's boxes of one level touch only the
-  // frozen level below: one group each).
+  // frozen level below: one group each); appended to the run's groups.
   void group_level_contacts(const ImpulseStep& step);
   // The level's passes over its groups, each group until it converges, the level until it stalls.
   void solve_groups(ImpulseStep& step);
@@ -61,8 +65,12 @@ class ShockPropagation {
   double solve_sticking_groups(ImpulseStep& step);
   // Sets K and its inverse of the contacts that reach a frozen body to the moving body's share.
   static void set_frozen_collision_matrices(ImpulseStep& step, std::span<const LevelContact> contacts);
-  // The contacts of group g of the level being solved.
-  std::span<const LevelContact> group(int g) const { return groups_.group(group_contacts_, g); }
+  // The contacts of group g of the level being solved, and the level's number of groups.
+  std::span<const LevelContact> group(int g) const {
+    const int k = level_first_group_ + g;
+    return {grouped_.data() + group_start_[k], grouped_.data() + group_start_[k + 1]};
+  }
+  int level_groups() const { return level_group_count_; }
 
   int level_of(int body) const { return body < 0 ? -1 : level_[body]; }
   // A contact belongs to the higher of its two bodies' levels.
@@ -79,6 +87,13 @@ class ShockPropagation {
   std::vector<LevelContact> level_contacts_;
   std::vector<LevelContact> group_contacts_;  // level_contacts_ by group
   BodyGroups groups_;                         // the level's groups
+  // Every level's groups of the run, level after level: the contacts by group (grouped_), where
+  // each group begins in it (group_start_, one past the last group's end at the back), and each
+  // level's first group (level_group_); kept for the next run when its contact set is the same.
+  std::vector<LevelContact> grouped_;
+  std::vector<int> group_start_;
+  std::vector<int> level_group_;
+  int level_first_group_ = 0, level_group_count_ = 0;  // the level being solved
   std::vector<int> active_;  // the groups of the level not converged yet
 };
 

@@ -33,6 +33,7 @@ struct WorldCounters {
   std::uint64_t narrowphase_calls = 0;    // box-box and box-plane tests run
   std::uint64_t pairs_found = 0;          // body pairs (and body-ground pairs) whose contacts were found
   std::uint64_t pairs_reused = 0;         // those copied from the last step instead (ContactReuse)
+  std::uint64_t same_contact_sets = 0;    // impulse steps whose contact set was the last step's, contact for contact
   std::uint64_t collision_loop_runs = 0;
   std::uint64_t contact_loop_runs = 0;
   std::uint64_t shock_propagation_runs = 0;
