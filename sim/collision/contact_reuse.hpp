@@ -9,6 +9,8 @@
 // tells the solver that what it derived from it (offsets, collision matrices) still holds.
 #pragma once
 
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
