@@ -31,6 +31,15 @@ Aabb boxes_aabb(std::span<const OrientedBox> boxes, double margin);
 // once the first call has sized it.
 class SweepAndPrune {
  public:
+  // The sweep's order compares lower x bounds rounded to the nearest multiple of this grain (m),
+  // ties by body index: bodies at rest, whose bounds move by rounding alone, keep their order from
+  // step to step (as do the pairs it yields and their contacts: contact_reuse.hpp), where exact
+  // bounds would swap two bodies whose lower x are equal (a stack, a Jenga tower) at random.
+  // (Rounded down instead, a bound on a round coordinate such as -0.75 m sat on a cell's edge and
+  // its rounding jitter flipped its cell.) The sweep ends a box's scan two grains later to make up
+  // for the rounding, so no overlapping pair is missed.
+  static constexpr double kOrderGrain = 1e-9;
+
   // Sizes the storage for `storage.bodies` bodies and their expected pairs.
   void reserve(const StepStorage& storage);
   // The pairs (i < j) of bodies whose boxes overlap, each box grown by its body's margin
@@ -43,14 +52,6 @@ class SweepAndPrune {
                                                      const std::vector<char>& fixed);
 
  private:
-  // The sweep's order compares lower x bounds rounded to the nearest multiple of this grain (m),
-  // ties by body index: bodies at rest, whose bounds move by rounding alone, keep their order from
-  // step to step (as do the pairs it yields and their contacts: contact_reuse.hpp), where exact
-  // bounds would swap two bodies whose lower x are equal (a stack, a Jenga tower) at random.
-  // (Rounded down instead, a bound on a round coordinate such as -0.75 m sat on a cell's edge and
-  // its rounding jitter flipped its cell.) The sweep ends a box's scan two grains later to make up
-  // for the rounding, so no overlapping pair is missed.
-  static constexpr double kOrderGrain = 1e-9;
   // Sorts order_ by the boxes' lower x bound in grains and index: insertion sort from the last
   // call's order.
   void sort_by_lower_x(const std::vector<Aabb>& boxes);
