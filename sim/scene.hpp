@@ -37,8 +37,10 @@ struct CollisionSettings {
   bool reduce_to_four = false;
   // Points up to this far apart still count as contacts (speculative contacts), m.
   double margin = 0.0;
-  // Copy a pair's contacts from the last step while neither body has moved beyond rounding
-  // (sim/collision/contact_reuse.hpp); off, every pair is tested at every step.
+  // The impulse method: copy a pair's contacts from the last step while neither body has moved
+  // beyond rounding (sim/collision/contact_reuse.hpp); off, every pair is tested at every step.
+  // The penalty method always tests every pair: its springs read each contact's depth, which a
+  // copy would leave up to the tolerance stale (a box at rest then rings at 1e-10 m/s).
   bool reuse_contacts = true;
 };
 

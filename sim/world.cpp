@@ -28,7 +28,8 @@ World::World(const Scene& scene, std::string name)
   }
   const StepStorage storage{bodies_.size()};
   contacts_.reserve(storage.contacts());
-  reuse_.reserve(bodies_.size(), storage.contacts(), storage.pairs() + bodies_.size(), scene_.collision.reuse_contacts);
+  reuse_.reserve(bodies_.size(), storage.contacts(), storage.pairs() + bodies_.size(),
+                 scene_.collision.reuse_contacts && scene_.solver.method == ContactSolver::Impulse);
   events_.reserve(storage.events());
   broadphase_.reserve(storage);
 }

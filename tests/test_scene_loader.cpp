@@ -779,6 +779,8 @@ TEST_CASE("the penalty method's keys load, and each method's keys are errors und
              Catch::Contains("solver.stiffness") && Catch::Contains("belongs to the penalty method"));
   CHECK_THAT(error_of(R"({"name": "x", "solver": {"method": "penalty", "shock_passes": 3}, )" + body),
              Catch::Contains("solver.shock_passes") && Catch::Contains("belongs to the impulse method"));
+  CHECK_THAT(error_of(R"({"name": "x", "solver": {"method": "penalty"}, "collision": {"reuse_contacts": true}, )" + body),
+             Catch::Contains("collision.reuse_contacts") && Catch::Contains("belongs to the impulse method"));
   CHECK_THAT(error_of(R"({"name": "x", "material": {"static_friction": 0.9}, )" + body),
              Catch::Contains("material.static_friction") && Catch::Contains("belongs to the penalty method"));
   CHECK_THAT(error_of(R"({"name": "x", "material": {"friction": 0.5, "static_friction": 0.4}, "solver": {"method": "penalty"}, )" + body),

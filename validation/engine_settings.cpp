@@ -91,7 +91,6 @@ const std::array kPenaltySettings = {
                   [](EngineConfig& c, const json& v) { c.scene.solver.penalty.substeps = v.get<int>(); }},
     kReduceToFour,
     kCollisionMargin,
-    kReuseContacts,
 };
 
 // "own" runs each scene's method: every setting of either method (load_grid checks that a
@@ -99,7 +98,7 @@ const std::array kPenaltySettings = {
 const std::vector<EngineSetting> kOwnSettings = [] {
   std::vector<EngineSetting> all(kImpulseSettings.begin(), kImpulseSettings.end());
   for (const EngineSetting& s : kPenaltySettings) {
-    if (s.key != kReduceToFour.key && s.key != kCollisionMargin.key && s.key != kReuseContacts.key) all.push_back(s);
+    if (s.key != kReduceToFour.key && s.key != kCollisionMargin.key) all.push_back(s);
   }
   return all;
 }();

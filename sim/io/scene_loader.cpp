@@ -458,7 +458,14 @@ Scene read_scene(const JsonNode& root, const LoadLimits& caps) {
   s.time = read_time(root.at("time"));
   s.allow_initial_overlap = root.boolean_or("allow_initial_overlap", false);
   if (s.solver.method == ContactSolver::Impulse) refuse_static_friction(root);
-  if (s.solver.method == ContactSolver::Penalty) check_penalty_settings(root, s);
+  if (s.solver.method == ContactSolver::Penalty) {
+    check_penalty_settings(root, s);
+    if (const auto c = root.find("collision"); c && c->find("reuse_contacts")) {
+      c->at("reuse_contacts").fail(
+          "belongs to the impulse method, but solver.method is \"penalty\": the penalty method tests every pair "
+          "at every step (its springs read each contact's depth); remove it or set solver.method to \"impulse\"");
+    }
+  }
   if (const auto c = root.find("checks")) s.checks = read_checks(*c, s.bodies);
   return s;
 }
