@@ -145,8 +145,9 @@ TEST_CASE("a pair is looked for within 16 places of where last step's search had
 
 TEST_CASE("a run that keeps contacts at rest is the run that finds them at every step", "[contacts][reuse]") {
   // Scenes at rest (every pair copied once settled) and one that keeps moving, 2 s each. The two
-  // runs differ by rounding-size offsets of the contacts kept: gated at 1e-9 m, far above the
-  // 1e-12 m the tolerance allows and far below the 1e-4 m penetration slop.
+  // runs differ by rounding-size offsets of the contacts kept: measured 0 (stack_10), 4e-18 m (the
+  // pyramid) and 8.5e-13 m (the Jenga tower), gated at 1e-10 m, far below the 1e-4 m penetration
+  // slop.
   const auto path = GENERATE(as<std::string>{}, "scenes/stack_10.json", "scenes/pyramid.json", "hard/jenga.json",
                              "scenes/incline_slide.json");
   Scene s = scene_file(path);
@@ -160,7 +161,7 @@ TEST_CASE("a run that keeps contacts at rest is the run that finds them at every
     found.step();
   }
   INFO(path);
-  CHECK(largest_distance(kept, found) < 1e-9);
+  CHECK(largest_distance(kept, found) < 1e-10);
   CHECK(found.counters().pairs_reused == 0);
   CHECK(found.counters().same_contact_sets == 0);
   if (path == "scenes/incline_slide.json") {

@@ -35,12 +35,14 @@ constexpr std::array<std::string_view, 2> kOdeSteppers = {"quickstep", "world"};
 const EngineSetting kReduceToFour{
     "reduce_to_four", Kind::Boolean, "", "reduce each box-box manifold to at most 4 points", 0, 0, {},
     [](EngineConfig& c, const json& v) { c.scene.collision.reduce_to_four = v.get<bool>(); }};
-const EngineSetting kReuseContacts{
-    "reuse_contacts", Kind::Boolean, "", "copy a pair's contacts from the last step while neither body moves beyond rounding (1e-12)", 0, 0,
-    {}, [](EngineConfig& c, const json& v) { c.scene.collision.reuse_contacts = v.get<bool>(); }};
 const EngineSetting kCollisionMargin{
     "collision_margin", Kind::Number, "m", "points up to this far apart count as contacts (speculative contacts)", 0,
     kMaxLength, {}, [](EngineConfig& c, const json& v) { c.scene.collision.margin = v.get<double>(); }};
+// The impulse method's alone: the penalty method tests every pair at every step (scene.hpp).
+const EngineSetting kReuseContacts{
+    "reuse_contacts", Kind::Boolean, "",
+    "copy a pair's contacts from the last step while neither body moves beyond rounding (1e-12)", 0, 0, {},
+    [](EngineConfig& c, const json& v) { c.scene.collision.reuse_contacts = v.get<bool>(); }};
 
 // Our impulse method (the scene's `solver` and `collision` keys, docs/scene-format.md).
 const std::array kImpulseSettings = {

@@ -16,7 +16,8 @@ void ContactReuse::reserve(std::size_t bodies, std::size_t contacts, std::size_t
 }
 
 void ContactReuse::begin(const std::vector<RigidBody>& bodies, std::vector<BodyContact>& contacts) {
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
+  // (Off, no pair is copied and no reference pose is read.)
+  for (std::size_t i = 0; enabled_ && i < bodies.size(); ++i) {
     const RigidBody& b = bodies[i];
     // (Stamp 0: no reference pose yet, before the first step.)
     const bool within = stamp_[i] != 0 && (b.x - ref_x_[i]).cwiseAbs().maxCoeff() <= kPoseTolerance &&

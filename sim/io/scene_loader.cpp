@@ -421,9 +421,15 @@ void refuse_static_friction(const JsonNode& root) {
   for (std::size_t i = 0; i < bodies.array_size(); ++i) refuse(bodies.element(i).find("material"));
 }
 
-// A damping set for every pair would leave the materials' restitution unread; and a scene whose
-// dt breaks the stability bound, with substeps left to derive, is refused naming the bound.
+// A damping set for every pair would leave the materials' restitution unread; a scene whose dt
+// breaks the stability bound, with substeps left to derive, is refused naming the bound; and
+// collision.reuse_contacts is the impulse method's (the penalty method tests every pair).
 void check_penalty_settings(const JsonNode& root, const Scene& s) {
+  if (const auto c = root.find("collision"); c && c->find("reuse_contacts")) {
+    c->at("reuse_contacts").fail(
+        "belongs to the impulse method, but solver.method is \"penalty\": the penalty method tests every pair "
+        "at every step (its springs read each contact's depth); remove it or set solver.method to \"impulse\"");
+  }
   if (s.solver.penalty.damping && s.effects.restitution) {
     double e = s.material.restitution;
     for (const BodyDesc& b : s.bodies)
@@ -458,14 +464,7 @@ Scene read_scene(const JsonNode& root, const LoadLimits& caps) {
   s.time = read_time(root.at("time"));
   s.allow_initial_overlap = root.boolean_or("allow_initial_overlap", false);
   if (s.solver.method == ContactSolver::Impulse) refuse_static_friction(root);
-  if (s.solver.method == ContactSolver::Penalty) {
-    check_penalty_settings(root, s);
-    if (const auto c = root.find("collision"); c && c->find("reuse_contacts")) {
-      c->at("reuse_contacts").fail(
-          "belongs to the impulse method, but solver.method is \"penalty\": the penalty method tests every pair "
-          "at every step (its springs read each contact's depth); remove it or set solver.method to \"impulse\"");
-    }
-  }
+  if (s.solver.method == ContactSolver::Penalty) check_penalty_settings(root, s);
   if (const auto c = root.find("checks")) s.checks = read_checks(*c, s.bodies);
   return s;
 }

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -35,9 +36,13 @@ inline int test_samples(int fallback) {
 }
 // Steps of the long drift runs: BOXPILE_LONG_RUN_STEPS shortens them where every step costs tens
 // of times more (the sanitizer stage of .ci/run; the release stage runs them in full).
+// A value that is no positive integer is an error, not a run of no steps (which would pass).
 inline int test_long_run_steps(int fallback) {
   const char* s = std::getenv("BOXPILE_LONG_RUN_STEPS");
-  return s ? std::atoi(s) : fallback;
+  if (!s) return fallback;
+  const int steps = std::atoi(s);
+  if (steps <= 0) throw std::invalid_argument(std::string("BOXPILE_LONG_RUN_STEPS must be a positive integer, got ") + s);
+  return steps;
 }
 
 // The manifold has exactly the expected points, each matched by one contact within tol. For use
