@@ -18,7 +18,8 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/scene.hpp"
 // Contacts: the types, our detectors, ODE's and Bullet's, and the table of all of them by name.
-#include "boxpile/reference/reference_contacts.hpp"
+#include "boxpile/reference/bullet/bullet_contacts.hpp"
+#include "boxpile/reference/ode/ode_contacts.hpp"
 #include "boxpile/sim/collision/box.hpp"
 #include "boxpile/sim/collision/box_box.hpp"
 #include "boxpile/sim/collision/box_plane.hpp"
@@ -26,6 +27,6 @@
 #include "boxpile/validation/detectors.hpp"
 // Engines by name, comparing contact sets, and the judge of a collider.
 #include "boxpile/validation/contact_diff.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/judge/check_collider.hpp"
 #include "boxpile/validation/judge/judge.hpp"

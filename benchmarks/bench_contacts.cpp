@@ -1,7 +1,7 @@
 // Time per box-box query on the same fixed set of random touching pairs (tests/support/
 // geometry.hpp, seed 1): our separating-axis test and clipping, ODE's dCollide (dBoxBox), and
 // Bullet's btBoxBoxDetector, each called directly on shapes placed beforehand; then the full
-// adapters of reference/reference_contacts.hpp (conversion to our convention, and for Bullet the
+// adapters of reference/ode/ode_contacts.hpp and reference/bullet/bullet_contacts.hpp (conversion to our convention, and for Bullet the
 // dispatcher's algorithm and persistent manifold) for the cost of a `boxpile contacts` query.
 #include <benchmark/benchmark.h>
 
@@ -13,7 +13,8 @@
 #include <btBulletCollisionCommon.h>
 #include <ode/ode.h>
 
-#include "boxpile/reference/reference_contacts.hpp"
+#include "boxpile/reference/bullet/bullet_contacts.hpp"
+#include "boxpile/reference/ode/ode_contacts.hpp"
 #include "boxpile/sim/collision/box_box.hpp"
 #include "boxpile/tests/support/geometry.hpp"
 

@@ -21,16 +21,15 @@
 #include <vector>
 
 #include "generated_scenes.hpp"
-#include "boxpile/reference/settings.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/time_steps.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 
 namespace boxpile {
 namespace {
 
 void time_steps(benchmark::State& state, const Scene& scene, const std::string& engine,
-                const ReferenceSettings& settings, long steps) {
+                const nlohmann::json& settings, long steps) {
   std::vector<BodyContact> contacts;
   for (auto _ : state) {
     state.PauseTiming();
@@ -54,42 +53,39 @@ Scene fixture_scene(const std::string& scene_name) {
 }
 
 void step_scene(benchmark::State& state, const std::string& scene_name, const std::string& engine,
-                const ReferenceSettings& settings) {
+                const nlohmann::json& settings) {
   const Scene scene = fixture_scene(scene_name);
   time_steps(state, scene, engine, settings, step_count(scene.time));
 }
 
-ReferenceSettings ode_world_step() {
-  ReferenceSettings s;
-  s.ode_method = OdeStepMethod::Step;
-  return s;
-}
+nlohmann::json ode_world_step() { return {{"stepper", "world"}}; }
 
-BENCHMARK_CAPTURE(step_scene, stack_5/ode_quickstep, "stack_5", "ode", ReferenceSettings{})
+BENCHMARK_CAPTURE(step_scene, stack_5/ode_quickstep, "stack_5", "ode", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_5/ode_worldstep, "stack_5", "ode", ode_world_step())
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(step_scene, stack_5/bullet, "stack_5", "bullet", ReferenceSettings{})
+BENCHMARK_CAPTURE(step_scene, stack_5/bullet, "stack_5", "bullet", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(step_scene, stack_5/own, "stack_5", "own", ReferenceSettings{})
+BENCHMARK_CAPTURE(step_scene, stack_5/own, "stack_5", "own", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(step_scene, stack_10/own, "stack_10", "own", ReferenceSettings{})
+BENCHMARK_CAPTURE(step_scene, stack_10/own, "stack_10", "own", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(step_scene, stack_10/ode_quickstep, "stack_10", "ode", ReferenceSettings{})
+BENCHMARK_CAPTURE(step_scene, stack_10/ode_quickstep, "stack_10", "ode", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(step_scene, stack_10/bullet, "stack_10", "bullet", ReferenceSettings{})
+BENCHMARK_CAPTURE(step_scene, stack_10/bullet, "stack_10", "bullet", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(step_scene, pile_100/own, "pile_100", "own", ReferenceSettings{})
+BENCHMARK_CAPTURE(step_scene, pile_100/own, "pile_100", "own", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
-BENCHMARK_CAPTURE(step_scene, pile_100/ode_quickstep, "pile_100", "ode", ReferenceSettings{})
+BENCHMARK_CAPTURE(step_scene, pile_100/ode_quickstep, "pile_100", "ode", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
-BENCHMARK_CAPTURE(step_scene, pile_100/bullet, "pile_100", "bullet", ReferenceSettings{})
+BENCHMARK_CAPTURE(step_scene, pile_100/bullet, "pile_100", "bullet", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
 
-constexpr std::array<const char*, 3> kEngines = {"own", "ode", "bullet"};
+// The engines of the catalogue (the registry's stability list).
+const std::vector<std::string> kEngines = default_engines(&DefaultLists::stability);
 
 // The catalogue's durations: long enough for each scene to settle.
 constexpr double kPyramid6Duration = 3.0;   // s
@@ -101,7 +97,7 @@ constexpr std::array<int, 6> kScalingBases = {4, 6, 8, 10, 14, 20};
 constexpr long kScalingSteps = 60;
 
 void step_generated(benchmark::State& state, const Scene& scene, const std::string& engine, long steps) {
-  time_steps(state, scene, engine, ReferenceSettings{}, steps);
+  time_steps(state, scene, engine, nlohmann::json::object(), steps);
 }
 
 long whole(const Scene& s) { return step_count(s.time); }
@@ -127,17 +123,17 @@ const bool registered = [] {
       {"jenga", bench::jenga_tower(kJengaDuration)},
   };
   for (const auto& [name, scene] : hard)
-    for (const char* engine : kEngines)
+    for (const std::string& engine : kEngines)
       benchmark::RegisterBenchmark(("step_hard/" + name + "/" + engine).c_str(), step_generated, scene,
-                                   std::string(engine), whole(scene))
+                                   engine, whole(scene))
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
   for (int base : kScalingBases) {
     const Scene scene = bench::square_pyramid(base, kScalingSteps * TimeSettings{}.dt);
-    for (const char* engine : kEngines)
+    for (const std::string& engine : kEngines)
       benchmark::RegisterBenchmark(("step_scaling/pyramid_" + std::to_string(bench::square_pyramid_boxes(base)) +
                                     "/" + engine).c_str(),
-                                   step_generated, scene, std::string(engine), kScalingSteps)
+                                   step_generated, scene, engine, kScalingSteps)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
   }

@@ -11,7 +11,7 @@
 #include <string>
 #include <string_view>
 
-#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/reference/ode/ode_engine.hpp"
 #include "boxpile/sim/io/query_loader.hpp"
 #include "boxpile/validation/detectors.hpp"
 

@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <string>
 
-#include "boxpile/reference/bullet_engine.hpp"
-#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/reference/bullet/bullet_engine.hpp"
+#include "boxpile/reference/ode/ode_engine.hpp"
 #include "boxpile/sim/finite.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/world.hpp"

@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "boxpile/reference/bullet_engine.hpp"
-#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/reference/bullet/bullet_engine.hpp"
+#include "boxpile/reference/ode/ode_engine.hpp"
 #include "boxpile/sim/collision/box_box.hpp"
 #include "boxpile/sim/io/query_loader.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
@@ -32,7 +32,7 @@
 #include "boxpile/tests/support/geometry.hpp"
 #include "boxpile/validation/contact_diff.hpp"
 #include "boxpile/validation/detectors.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/judge/judge.hpp"
 
 using namespace boxpile;

@@ -17,13 +17,13 @@
 #include <string>
 #include <vector>
 
-#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/reference/ode/ode_engine.hpp"
 #include "boxpile/sim/finite.hpp"
 #include "boxpile/sim/limits.hpp"
 #include "boxpile/sim/scene.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/compare.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/report_directory.hpp"
 
@@ -57,7 +57,7 @@ Scene two_cubes(double mass, double h, double speed, double spin) {
 
 // Steps the scene for its duration; returns the final states, or fails at a non-finite step.
 std::vector<BodyState> run_checked(const Scene& scene, const std::string& engine_name) {
-  const std::unique_ptr<Engine> engine = make_engine(engine_name, scene, ReferenceSettings{});
+  const std::unique_ptr<Engine> engine = make_engine(engine_name, scene);
   std::vector<BodyState> states;
   const long steps = step_count(scene.time);
   for (long k = 1; k <= steps; ++k) {

@@ -12,7 +12,7 @@
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/recording.hpp"
 #include "boxpile/validation/replay_data.hpp"
 #include "boxpile/validation/replay_page.hpp"

@@ -10,7 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "boxpile/sim/io/input_error.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
+#include "boxpile/reference/bullet/bullet_settings.hpp"
+#include "boxpile/reference/ode/ode_settings.hpp"
 #include "boxpile/validation/engine_settings.hpp"
 #include "boxpile/validation/pareto.hpp"
 #include "boxpile/validation/stability.hpp"
@@ -321,32 +323,38 @@ TEST_CASE("Shards merged equal the whole sweep in every error figure", "[sweep]"
 }
 
 TEST_CASE("A setting reaches the field it names, from a grid or from run --set", "[sweep]") {
-  EngineConfig config{fixture("stack_5"), {}};
-  apply_settings("ode", {{"erp", 0.8}, {"cfm", 1e-5}, {"stepper", "world"}, {"iterations", 7}}, config);
-  CHECK(config.reference.ode_erp == 0.8);
-  CHECK(config.reference.ode_cfm == 1e-5);
-  CHECK(config.reference.ode_method == OdeStepMethod::Step);
-  CHECK(config.reference.ode_quickstep_iterations == 7);
-  apply_settings("bullet", {{"split_impulse", false}, {"iterations", 3}, {"cfm", 0.01}}, config);
-  CHECK(!config.reference.bullet_split_impulse);
-  CHECK(config.reference.bullet_iterations == 3);
-  CHECK(config.reference.bullet_cfm == 0.01);
-  apply_settings("own", {{"contact_passes", 3}, {"shock_propagation", false}, {"integrator", "explicit_euler"}}, config);
-  CHECK(config.scene.solver.contact_passes == 3);
-  CHECK(!config.scene.solver.shock_propagation);
-  CHECK(config.scene.solver.integrator == PositionIntegrator::ExplicitEuler);
-  apply_settings("own-penalty", {{"collision_margin", 0.002}, {"substeps", 4}}, config);
-  CHECK(config.scene.collision.margin == 0.002);
-  CHECK(config.scene.solver.penalty.substeps == 4);
-  apply_settings("ode", {{"seed", 42}}, config);
-  CHECK(config.reference.ode_seed == 42u);
+  EngineConfig ode{fixture("stack_5")};
+  apply_settings("ode", {{"erp", 0.8}, {"cfm", 1e-5}, {"stepper", "world"}, {"iterations", 7}, {"seed", 42}}, ode);
+  const OdeSettings o = ode_settings_table().make(ode.settings);
+  CHECK(o.erp == 0.8);
+  CHECK(o.cfm == 1e-5);
+  CHECK(o.method == OdeStepMethod::Step);
+  CHECK(o.quickstep_iterations == 7);
+  CHECK(o.seed == 42u);
+  EngineConfig bullet{fixture("stack_5")};
+  apply_settings("bullet", {{"split_impulse", false}, {"iterations", 3}, {"cfm", 0.01}}, bullet);
+  const BulletSettings b = bullet_settings_table().make(bullet.settings);
+  CHECK(!b.split_impulse);
+  CHECK(b.iterations == 3);
+  CHECK(b.cfm == 0.01);
+  EngineConfig own{fixture("stack_5")};
+  apply_settings("own", {{"contact_passes", 3}, {"shock_propagation", false}, {"integrator", "explicit_euler"}}, own);
+  const Scene s = scene_with_settings("own", own.scene, own.settings);
+  CHECK(s.solver.contact_passes == 3);
+  CHECK(!s.solver.shock_propagation);
+  CHECK(s.solver.integrator == PositionIntegrator::ExplicitEuler);
+  EngineConfig penalty{fixture("stack_5")};
+  apply_settings("own-penalty", {{"collision_margin", 0.002}, {"substeps", 4}}, penalty);
+  const Scene p = scene_with_settings("own-penalty", penalty.scene, penalty.settings);
+  CHECK(p.collision.margin == 0.002);
+  CHECK(p.solver.penalty.substeps == 4);
 
   // Every listed setting of every engine is accepted by its own check at its lower bound.
-  for (std::string_view engine : available_engine_names()) {
-    for (const EngineSetting& s : engine_settings(engine)) {
+  for (const std::string& engine : available_engine_names()) {
+    for (const SettingInfo& s : engine_settings(engine)) {
       INFO(engine << "." << s.key);
-      json value = s.kind == EngineSetting::Kind::Boolean ? json(true)
-                   : s.kind == EngineSetting::Kind::Choice ? json(std::string(s.choices.front()))
+      json value = s.kind == SettingInfo::Kind::Boolean ? json(true)
+                   : s.kind == SettingInfo::Kind::Choice ? json(s.choices.front())
                                                            : json(s.min);
       CHECK_NOTHROW(parse_setting_words(engine, {std::string(s.key) + "=" + value.dump()}, "test"));
     }

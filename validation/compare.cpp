@@ -6,7 +6,7 @@
 #include <limits>
 #include <memory>
 
-#include "boxpile/reference/reference_contacts.hpp"
+
 #include "boxpile/sim/collision/box.hpp"
 #include "boxpile/sim/collision/box_box.hpp"
 #include "boxpile/sim/collision/box_plane.hpp"
@@ -15,7 +15,7 @@
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/sim/solver/step_context.hpp"
 #include "boxpile/validation/detectors.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/run_loop.hpp"
 #include "boxpile/validation/state_meter.hpp"
 #include "boxpile/validation/wire_check.hpp"
@@ -111,7 +111,9 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
                   RecordDetail detail, const std::function<void(double)>& progress) {
   EngineRun run;
   run.engine = std::string(name);
-  const std::unique_ptr<Engine> engine = make_engine(name, scene, settings.reference);
+  const nlohmann::json given = settings.settings_of(run.engine);
+  const std::unique_ptr<Engine> engine = make_engine(name, scene, given);
+  run.settings = resolved_settings(name, scene, given);
   const bool full = detail == RecordDetail::Full;
   const double dt = scene.time.dt;
   const long steps = step_count(scene.time);
@@ -419,6 +421,11 @@ ContactFrameCheck check_contacts(const Scene& scene, const std::vector<BodyState
                      [](const ContactDisagreement& a, const ContactDisagreement& b) { return a.value > b.value; });
   }
   return check;
+}
+
+nlohmann::json CompareSettings::settings_of(const std::string& engine) const {
+  const auto it = engine_settings.find(engine);
+  return it == engine_settings.end() ? nlohmann::json::object() : it->second;
 }
 
 CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {

@@ -11,7 +11,11 @@
 #include <string_view>
 #include <vector>
 
-#include "boxpile/reference/settings.hpp"
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/engine.hpp"
 #include "boxpile/sim/metrics.hpp"
 #include "boxpile/sim/scene.hpp"
@@ -32,8 +36,11 @@ struct CompareProgress {
 };
 
 struct CompareSettings {
-  std::vector<std::string> engines = {"own", "ode", "bullet"};
-  ReferenceSettings reference;
+  // The engines run, in order (the registry's compare list by default).
+  std::vector<std::string> engines = default_engines(&DefaultLists::compare);
+  // Settings {key: value} per engine, each checked against the engine's table (parse_set_options);
+  // an engine left out runs at its defaults.
+  std::map<std::string, nlohmann::json> engine_settings;
   // Every free body's start is moved by this much (across gravity; along the wire for a body on
   // one) for the baseline run of each engine, m.
   double perturbation = 1e-9;
@@ -49,6 +56,8 @@ struct CompareSettings {
   int contact_check_frames = 4;
   // Called at each recorded frame of each run.
   std::function<void(const CompareProgress&)> progress;
+  // The settings given for `engine` ({} when none).
+  nlohmann::json settings_of(const std::string& engine) const;
 };
 
 // An impact: a pair of bodies (or a body and the ground, body_b = kGround) approaching faster than
@@ -74,6 +83,8 @@ struct WireReport {
 
 struct EngineRun {
   std::string engine;
+  // Every setting's value the engine ran with, defaults included (resolved_settings).
+  nlohmann::json settings = nlohmann::json::object();
   long steps = 0;
   double wall_seconds = 0.0;  // stepping only
   double us_per_step = 0.0;

@@ -1,65 +1,55 @@
-// Every setting each engine exposes, by name, with its unit and allowed values: the vocabulary of
-// a sweep grid (docs/sweeps.md lists them). A setting changes either the scene's solver and
-// collision settings (our engine) or the reference engines' ReferenceSettings (ODE, Bullet).
+// The settings of the registry's engines as the command line and sweep grids give them: a key
+// checked against the engine's declaration (reference/registry.hpp: each row's settings table),
+// a value against its kind and range, `--set ENGINE.KEY=VALUE` words read into one checked
+// object per engine, and every engine's table as Markdown (`boxpile settings`, docs/sweeps.md).
 #pragma once
 
+#include <map>
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "boxpile/reference/settings.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/sim/io/setting.hpp"
 #include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
 
-// What one engine is built from: the scene (with our solver's settings) and the references'.
+// What one engine is built from: the scene and the engine's settings {key: value}, each checked
+// against its declaration (make_engine(name, config.scene, config.settings)).
 struct EngineConfig {
   Scene scene;
-  ReferenceSettings reference;
+  nlohmann::json settings = nlohmann::json::object();
 };
-
-struct EngineSetting {
-  enum class Kind { Integer, Number, Boolean, Choice };
-  std::string_view key;
-  Kind kind = Kind::Number;
-  std::string_view unit;  // "" for dimensionless, counts and choices
-  std::string_view what;  // one line: what it sets, in the engine's own words
-  // Allowed range of an Integer or Number (inclusive).
-  double min = 0.0, max = 0.0;
-  // The names of a Choice.
-  std::span<const std::string_view> choices = {};
-  // Sets the value in `config`; the value has already been checked by check_setting_value.
-  void (*apply)(EngineConfig& config, const nlohmann::json& value) = nullptr;
-};
-
-// The settings `engine` exposes (empty for an engine without any). Throws UnknownEngine for a name
-// the factory does not know.
-std::span<const EngineSetting> engine_settings(std::string_view engine);
 
 // The setting `key` of `engine`: InputError at `node`'s path naming the key (with the closest
-// name) when the engine has no such setting.
-const EngineSetting& find_setting(std::string_view engine, std::string_view key, const json_input::JsonNode& node);
+// name and the engine's settings) when the engine has no such setting.
+SettingInfo find_setting(std::string_view engine, std::string_view key, const json_input::JsonNode& node);
 
-// Checks one value of a setting (type, range, choice): InputError at `value`'s path otherwise.
-void check_setting_value(const EngineSetting& setting, const json_input::JsonNode& value);
-
-// Applies settings {key: value} (each already checked) to `config`.
+// Adds settings {key: value} (each already checked) to `config`; InputError for a key `engine`
+// does not declare.
 void apply_settings(std::string_view engine, const nlohmann::json& settings, EngineConfig& config);
 
 // The contact method a setting of "own" belongs to (it runs each scene's method); empty for the
 // settings of both methods and for every other engine (which forces its method or has none).
 std::optional<ContactSolver> setting_method(std::string_view engine, std::string_view key);
 
-// Settings given as "key=value" words (a command line's --set): each value read as JSON (5, 0.2,
-// true, "world") or, when that fails, as a string (world); checked like a grid's. InputError
-// naming `source` and the key otherwise. Returns {key: value}.
+// Settings given as "key=value" words for one engine: each value read as JSON (5, 0.2, true,
+// "world") or, when that fails, as a string (world); checked like a grid's. InputError naming
+// `source` and the key otherwise (a key given twice too). Returns {key: value}.
 nlohmann::json parse_setting_words(std::string_view engine, const std::vector<std::string>& words,
                                    const std::string& source);
+
+// `--set ENGINE.KEY=VALUE` words (repeatable) for the engines that run: the prefix may be left
+// out when one engine runs. Refused (UsageError, InputError or UnknownEngine, all exit 2): a word
+// without "=", an unknown engine, an engine that is not running, an unknown key or a value out of
+// its declaration, and a key given twice. Returns {engine: {key: value}} for the engines given.
+std::map<std::string, nlohmann::json> parse_set_options(const std::vector<std::string>& words,
+                                                        const std::vector<std::string>& engines);
 
 // Every available engine's settings as Markdown tables (`boxpile settings`, docs/sweeps.md).
 std::string settings_markdown();

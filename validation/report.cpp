@@ -70,7 +70,8 @@ json engine_json(const CompareResult& r, const EngineRun& run, const Baseline& b
                      {"final_along", w.final_along}, {"length", w.length}});
   }
   const RunDifference& d = baseline.divergence;
-  return {{"final", {{"t", run.final_t}, {"bodies", bodies_json(run.final_states)}}},
+  return {{"settings", run.settings},
+          {"final", {{"t", run.final_t}, {"bodies", bodies_json(run.final_states)}}},
           {"stacks", stacks},
           {"us_per_step", run.us_per_step},
           {"wall_seconds", run.wall_seconds},

@@ -8,7 +8,7 @@
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/time_steps.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/run_loop.hpp"
 
 namespace boxpile {
@@ -29,12 +29,19 @@ int StabilityResult::own_failures() const {
       std::count_if(cells.begin(), cells.end(), [](const StabilityCell& c) { return c.engine == "own" && !c.passed; }));
 }
 
+nlohmann::json StabilitySettings::settings_of(const std::string& engine) const {
+  const auto it = engine_settings.find(engine);
+  return it == engine_settings.end() ? nlohmann::json::object() : it->second;
+}
+
 StabilityCell run_stability_cell(const Scene& scene, std::string_view engine_name, const StabilitySettings& settings,
                                  const std::function<void(double)>& progress) {
   StabilityCell cell;
   cell.scene = scene.name;
   cell.engine = std::string(engine_name);
-  const std::unique_ptr<Engine> engine = make_engine(engine_name, scene, settings.reference);
+  const nlohmann::json given = settings.settings_of(std::string(engine_name));
+  const std::unique_ptr<Engine> engine = make_engine(engine_name, scene, given);
+  cell.settings = resolved_settings(engine_name, scene, given);
   const long steps = step_count(scene.time);
   const long every = steps_per_frame(scene.time.dt, settings.frame_rate);
   // Progress at most about a hundred times per cell.

@@ -9,7 +9,11 @@
 #include <string_view>
 #include <vector>
 
-#include "boxpile/reference/settings.hpp"
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/scene.hpp"
 #include "boxpile/validation/stability_checks.hpp"
 
@@ -27,8 +31,13 @@ struct StabilityProgress {
 };
 
 struct StabilitySettings {
-  std::vector<std::string> engines = {"own", "ode", "bullet"};
-  ReferenceSettings reference;
+  // The engines run, in order (the registry's stability list by default).
+  std::vector<std::string> engines = default_engines(&DefaultLists::stability);
+  // Settings {key: value} per engine, each checked against the engine's table (parse_set_options);
+  // an engine left out runs at its defaults.
+  std::map<std::string, nlohmann::json> engine_settings;
+  // The settings given for `engine` ({} when none).
+  nlohmann::json settings_of(const std::string& engine) const;
   double frame_rate = 30.0;  // 1/s: energy and kinetic energy recorded for the plots
   std::function<void(const StabilityProgress&)> progress;
 };
@@ -37,6 +46,8 @@ struct StabilitySettings {
 struct StabilityCell {
   std::string scene;
   std::string engine;
+  // Every setting's value the engine ran with on this scene, defaults included.
+  nlohmann::json settings = nlohmann::json::object();
   bool passed = false;
   std::vector<SceneCheckResult> checks;
   RunMeasures measures;

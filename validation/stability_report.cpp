@@ -69,6 +69,7 @@ json stability_json(const StabilityResult& r) {
     }
     cells.push_back({{"scene", c.scene},
                      {"engine", c.engine},
+                     {"settings", c.settings},
                      {"passed", c.passed},
                      {"checks", checks},
                      {"measures", measures_json(c.measures)},

@@ -9,7 +9,7 @@
 
 #include "boxpile/sim/solver/step_context.hpp"
 #include "boxpile/sim/time_steps.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/engine_settings.hpp"
 #include "boxpile/validation/run_loop.hpp"
 
@@ -71,7 +71,7 @@ class ConvergenceMeter {
 // when given; reading them is outside the timed steps.
 double cell_run(const EngineConfig& config, const std::string& engine, long steps, RunMonitor* monitor,
                 ConvergenceMeter* meter) {
-  const std::unique_ptr<Engine> e = make_engine(engine, config.scene, config.reference);
+  const std::unique_ptr<Engine> e = make_engine(engine, config.scene, config.settings);
   RunHooks hooks;
   if (monitor) {
     hooks.step = [&](const StepView& v) {
@@ -110,6 +110,8 @@ CellResult run_cell(const SweepGrid& grid, const CellSpec& cell) {
   EngineConfig config{gs.scene, {}};
   config.scene.time.dt = cell.dt;
   apply_settings(cell.engine, cell.settings, config);
+  // Our engine's settings are the scene's: the rulers below read the scene it runs.
+  config.scene = scene_with_settings(cell.engine, config.scene, config.settings);
 
   CellResult r;
   r.spec = cell;

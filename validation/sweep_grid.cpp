@@ -5,7 +5,7 @@
 
 #include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/engine_settings.hpp"
 
 namespace boxpile {
@@ -50,14 +50,13 @@ GridEngine read_engine(const std::string& name, const JsonNode& node) {
   if (!node.json().is_object()) node.fail("must be an object {setting: [values]}");
   for (const auto& item : node.json().items()) {
     const JsonNode values = node.at(item.key());
-    const EngineSetting& setting = find_setting(name, item.key(), values);
+    const SettingInfo setting = find_setting(name, item.key(), values);
     const std::size_t n = values.array_size();
     if (n == 0) values.fail("must list at least one value");
     std::vector<nlohmann::json> list;
     for (std::size_t i = 0; i < n; ++i) {
       const JsonNode v = values.element(i);
-      check_setting_value(setting, v);
-      list.push_back(setting.kind == EngineSetting::Kind::Integer ? nlohmann::json(v.integer()) : v.json());
+      list.push_back(check_setting_value(setting, v));
     }
     engine.axes.emplace_back(item.key(), std::move(list));
   }

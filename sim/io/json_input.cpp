@@ -334,8 +334,11 @@ JsonNode JsonNode::child(std::string_view key) const {
 }
 
 void JsonNode::expect_object(std::initializer_list<std::string_view> allowed) const {
+  expect_object(std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+
+void JsonNode::expect_object(std::span<const std::string_view> names) const {
   if (!value_->is_object()) fail_type("object");
-  const std::span<const std::string_view> names(allowed.begin(), allowed.size());
   for (const auto& item : value_->items()) {
     const std::string& key = item.key();
     if (std::find(names.begin(), names.end(), key) != names.end()) continue;

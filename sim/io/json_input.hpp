@@ -61,6 +61,7 @@ class JsonNode {
   // the closest allowed one. Call it first, so that a misspelt key is reported as such rather
   // than as a missing one.
   void expect_object(std::initializer_list<std::string_view> allowed) const;
+  void expect_object(std::span<const std::string_view> allowed) const;
   bool has(std::string_view key) const;
   // A required member: "missing required key" when absent.
   JsonNode at(std::string_view key) const;

@@ -15,6 +15,7 @@
 #include "boxpile/sim/collision/broadphase.hpp"
 #include "boxpile/sim/collision/collide.hpp"
 #include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/sim/io/own_settings.hpp"
 #include "boxpile/sim/solver/penalty_parameters.hpp"
 #include "boxpile/sim/time_steps.hpp"
 
@@ -45,21 +46,38 @@ constexpr std::array<std::string_view, 2> kSolverMethods = {"impulse", "penalty"
 constexpr std::array<ContactSolver, 2> kSolverMethodValues = {ContactSolver::Impulse,
                                                               ContactSolver::Penalty};
 
-// The solver keys each method reads; under the other method they are errors (a setting that is
-// accepted must do something). `contact_margin` shapes the contact set, which both methods share.
-constexpr std::array<std::string_view, 8> kImpulseKeys = {
-    "collision_passes", "contact_passes",       "shock_propagation", "shock_passes",
-    "integrator",       "penetration_recovery", "penetration_slop",  "recovery_passes"};
-constexpr std::array<std::string_view, 4> kPenaltyKeys = {"stiffness", "damping", "friction_stiffness",
-                                                          "substeps"};
+// The keys of the scene's `solver` and `collision` objects are the rows of our settings table
+// (sim/io/own_settings.hpp) whose scene_key lies in that object: one declaration (range, kind,
+// default, the method that reads it) for the loader, `--set`, sweep grids and the docs.
+struct SectionRow {
+  std::string_view key;  // in the object
+  const Setting<Scene>* row;
+};
 
-// The most penalty steps one scene step may be split into: beyond it a run of seconds takes
-// hours, and a step that short is better asked for with a smaller dt.
-constexpr int kMaxPenaltySubsteps = 100000;
+std::vector<SectionRow> section_rows(std::string_view section) {
+  std::vector<SectionRow> rows;
+  for (const Setting<Scene>& r : own_settings_table().rows()) {
+    const std::string_view key = r.info.scene_key;
+    if (key.size() > section.size() && key.substr(0, section.size()) == section && key[section.size()] == '.') {
+      rows.push_back({key.substr(section.size() + 1), &r});
+    }
+  }
+  return rows;
+}
 
-constexpr std::array<std::string_view, 2> kIntegrators = {"explicit_euler", "semi_implicit_euler"};
-constexpr std::array<PositionIntegrator, 2> kIntegratorValues = {
-    PositionIntegrator::ExplicitEuler, PositionIntegrator::SemiImplicitEuler};
+// The object holds only the keys of `section`'s rows and `extra`.
+void expect_section_keys(const JsonNode& node, std::string_view section, std::initializer_list<std::string_view> extra) {
+  std::vector<std::string_view> allowed(extra);
+  for (const SectionRow& r : section_rows(section)) allowed.push_back(r.key);
+  node.expect_object(allowed);
+}
+
+// Each row's value given, checked against its declaration and written into the scene.
+void read_section_values(const JsonNode& node, std::string_view section, Scene& scene) {
+  for (const SectionRow& r : section_rows(section)) {
+    if (const auto v = node.find(r.key)) r.row->apply(scene, check_setting_value(r.row->info, *v));
+  }
+}
 
 std::string format_point(const Vec3& p) {
   std::string s = "[";
@@ -74,20 +92,10 @@ double read_mass(const JsonNode& node) {
   return json_input::read_in_range(node, limits::kMinMass, limits::kMaxMass, "kg");
 }
 
-double read_margin(const JsonNode& node) { return json_input::read_in_range(node, 0.0, limits::kMaxMargin, "m"); }
-
 double read_unit_interval(const JsonNode& node) {
   const double e = node.number();
   if (e < 0.0 || e > 1.0) node.fail("must be in [0, 1], got " + json_input::format_number(e));
   return e;
-}
-
-int read_pass_count(const JsonNode& node) {
-  const int n = node.integer();
-  if (n < 1 || n > kMaxSolverPasses) {
-    node.fail("must be in [1, " + std::to_string(kMaxSolverPasses) + "], got " + std::to_string(n));
-  }
-  return n;
 }
 
 // A material; keys left out keep the values of `fallback` (the scene's, for a body).
@@ -133,65 +141,30 @@ Damping read_damping(const JsonNode& node) {
   return d;
 }
 
-// Keys of one method given while the scene runs the other: named, with the method they belong to.
-template <std::size_t N>
-void refuse_keys_of(const JsonNode& node, const std::array<std::string_view, N>& keys,
-                    std::string_view owner, std::string_view method) {
-  for (std::string_view key : keys) {
-    if (const auto k = node.find(key)) {
-      k->fail("belongs to the " + std::string(owner) + " method, but \"method\" is " + in_quotes(method) +
+// The scene's `solver` object: its method, then every key of our settings table under
+// `solver.`; a key of one method given while the scene runs the other is an error naming the
+// method it belongs to (a setting that is accepted must do something).
+void read_solver(const JsonNode& node, Scene& scene) {
+  expect_section_keys(node, "solver", {"method"});
+  if (const auto m = node.find("method")) {
+    scene.solver.method = kSolverMethodValues[m->choice(kSolverMethods, "solver method")];
+  }
+  const std::string_view method = method_name(scene.solver.method);
+  for (const SectionRow& r : section_rows("solver")) {
+    const std::optional<ContactSolver> group = setting_group_method(r.row->info);
+    if (!group || *group == scene.solver.method) continue;
+    if (const auto k = node.find(r.key)) {
+      const std::string owner(method_name(*group));
+      k->fail("belongs to the " + owner + " method, but \"method\" is " + in_quotes(method) +
               ": remove it or set \"method\": " + in_quotes(owner));
     }
   }
+  read_section_values(node, "solver", scene);
 }
 
-PenaltySettings read_penalty(const JsonNode& node) {
-  PenaltySettings p;
-  if (const auto k = node.find("stiffness")) p.stiffness = json_input::read_positive(*k);
-  if (const auto c = node.find("damping")) p.damping = json_input::read_non_negative(*c);
-  if (const auto k = node.find("friction_stiffness")) p.friction_stiffness = json_input::read_positive(*k);
-  if (const auto n = node.find("substeps")) {
-    p.substeps = n->integer();
-    if (*p.substeps < 1 || *p.substeps > kMaxPenaltySubsteps) {
-      n->fail("must be in [1, " + std::to_string(kMaxPenaltySubsteps) + "], got " + std::to_string(*p.substeps));
-    }
-  }
-  return p;
-}
-
-SolverSettings read_solver(const JsonNode& node) {
-  node.expect_object({"method", "collision_passes", "contact_passes", "shock_propagation",
-                      "shock_passes", "integrator", "contact_margin", "penetration_recovery",
-                      "penetration_slop", "recovery_passes", "stiffness", "damping",
-                      "friction_stiffness", "substeps"});
-  SolverSettings s;
-  if (const auto m = node.find("method")) {
-    s.method = kSolverMethodValues[m->choice(kSolverMethods, "solver method")];
-  }
-  if (s.method == ContactSolver::Impulse) refuse_keys_of(node, kPenaltyKeys, "penalty", "impulse");
-  if (s.method == ContactSolver::Penalty) refuse_keys_of(node, kImpulseKeys, "impulse", "penalty");
-  s.penalty = read_penalty(node);
-  if (const auto n = node.find("collision_passes")) s.collision_passes = read_pass_count(*n);
-  if (const auto n = node.find("contact_passes")) s.contact_passes = read_pass_count(*n);
-  s.shock_propagation = node.boolean_or("shock_propagation", s.shock_propagation);
-  if (const auto n = node.find("shock_passes")) s.shock_passes = read_pass_count(*n);
-  if (const auto m = node.find("contact_margin")) s.contact_margin = read_margin(*m);
-  if (const auto r = node.find("penetration_recovery")) s.penetration_recovery = read_unit_interval(*r);
-  if (const auto m = node.find("penetration_slop")) s.penetration_slop = read_margin(*m);
-  if (const auto n = node.find("recovery_passes")) s.recovery_passes = read_pass_count(*n);
-  if (const auto i = node.find("integrator")) {
-    s.integrator = kIntegratorValues[i->choice(kIntegrators, "integrator")];
-  }
-  return s;
-}
-
-CollisionSettings read_collision(const JsonNode& node) {
-  node.expect_object({"reduce_to_four", "margin", "reuse_contacts"});
-  CollisionSettings c;
-  c.reduce_to_four = node.boolean_or("reduce_to_four", c.reduce_to_four);
-  c.reuse_contacts = node.boolean_or("reuse_contacts", c.reuse_contacts);
-  if (const auto m = node.find("margin")) c.margin = read_margin(*m);
-  return c;
+void read_collision(const JsonNode& node, Scene& scene) {
+  expect_section_keys(node, "collision", {});
+  read_section_values(node, "collision", scene);
 }
 
 TimeSettings read_time(const JsonNode& node) {
@@ -459,8 +432,8 @@ Scene read_scene(const JsonNode& root, const LoadLimits& caps) {
   if (const auto e = root.find("effects")) s.effects = read_effects(*e);
   if (const auto d = root.find("damping")) s.damping = read_damping(*d);
   s.bodies = read_bodies(root.at("bodies"), s.material, caps);
-  if (const auto c = root.find("solver")) s.solver = read_solver(*c);
-  if (const auto c = root.find("collision")) s.collision = read_collision(*c);
+  if (const auto c = root.find("solver")) read_solver(*c, s);
+  if (const auto c = root.find("collision")) read_collision(*c, s);
   s.time = read_time(root.at("time"));
   s.allow_initial_overlap = root.boolean_or("allow_initial_overlap", false);
   if (s.solver.method == ContactSolver::Impulse) refuse_static_friction(root);

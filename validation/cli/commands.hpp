@@ -58,7 +58,8 @@ int run_conform_command(const ConformOptions& options);
 
 // `boxpile run SCENE.json --engine NAME [--dt DT] [--duration T] [--every K] [--out FILE.json]`:
 // steps the scene in one engine; writes the recorded frames to FILE.json, or prints a summary.
-// `--ode-method` and `--iterations` set the reference engines' solver (reference/settings.hpp).
+// `--set [ENGINE.]KEY=VALUE` (repeatable) sets any setting of the engine (`boxpile settings`);
+// `--iterations N` is a spelling of `--set iterations=N`, capped by --max-iterations.
 struct RunOptions {
   std::string scene;
   std::string engine;
@@ -66,9 +67,8 @@ struct RunOptions {
   std::optional<double> duration;  // s; the scene's when absent
   int every = 10;                  // steps between recorded frames
   std::optional<std::string> out;  // absent: print a summary instead
-  std::string ode_method = "quickstep";  // ReferenceSettings::ode_method
-  std::optional<int> iterations;   // ODE QuickStep or Bullet solver iterations; the default's when absent
-  std::vector<std::string> set;    // "key=value": any setting of the engine (boxpile settings)
+  std::optional<int> iterations;   // --set iterations=N: ODE QuickStep's or Bullet's passes
+  std::vector<std::string> set;    // "[ENGINE.]KEY=VALUE": any setting of the engine (boxpile settings)
   RunLimits limits;
 };
 void add_run_command(CLI::App& app, RunOptions& options);
@@ -79,9 +79,10 @@ int run_run(const RunOptions& options);
 // a summary table. `boxpile` with no command runs it on the default scene.
 struct CompareOptions {
   std::string scene;
-  std::vector<std::string> engines;  // empty: own, ode, bullet
+  std::vector<std::string> engines;  // empty: the registry's compare list
   std::optional<double> dt;          // s; the scene's when absent
   std::optional<double> duration;    // s; the scene's when absent
+  std::vector<std::string> set;      // "ENGINE.KEY=VALUE" (the prefix optional when one engine runs)
   std::string report = "boxpile-report";
   RunLimits limits;
 };
@@ -118,8 +119,9 @@ int run_settings_command();
 // `boxpile stability [--engines LIST] [--scenes FILE|DIR ...] [--report DIR]`: the catalogue of
 // hard scenes in each engine, every run judged by its scene's checks; a report directory.
 struct StabilityOptions {
-  std::vector<std::string> engines;  // empty: own, ode, bullet
+  std::vector<std::string> engines;  // empty: the registry's stability list
   std::vector<std::string> scenes;   // empty: the catalogue (fixtures/hard/)
+  std::vector<std::string> set;      // "ENGINE.KEY=VALUE" (the prefix optional when one engine runs)
   std::string report = "boxpile-stability";
 };
 void add_stability_command(CLI::App& app, StabilityOptions& options);

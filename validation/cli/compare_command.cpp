@@ -6,17 +6,19 @@
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/cli/report_command.hpp"
 #include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/engine_settings.hpp"
 #include "boxpile/validation/data_directory.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/report.hpp"
 
 namespace boxpile::cli {
 
-// The main job: both of our contact methods beside the two references, on the bone scene.
+// The main job: the registry's main-job list (both of our contact methods beside the references),
+// on the bone scene.
 CompareOptions default_compare_options() {
   CompareOptions o;
   o.scene = data_path("fixtures/scenes/bone_hits_pile.json").string();
-  o.engines = {"own-impulse", "own-penalty", "ode", "bullet"};
+  o.engines = default_engines(&DefaultLists::main_job);
   return o;
 }
 
@@ -25,8 +27,9 @@ void add_compare_command(CLI::App& app, CompareOptions& options) {
                                                 "(report.json, report.md, SVG plots)");
   cmd->add_option("scene", options.scene, "Scene file (JSON, docs/scene-format.md)")->required();
   cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() +
-                      " (own: the scene's solver.method; default: own,ode,bullet)")->delimiter(',');
+                      " (own: the scene's solver.method; default: " + engine_list(default_engines(&DefaultLists::compare)) + ")")->delimiter(',');
   add_time_options(*cmd, options.dt, options.duration);
+  add_set_option(*cmd, options.set);
   add_report_option(*cmd, options.report, "");
   add_limit_options(*cmd, options.limits, false);
 }
@@ -35,6 +38,7 @@ int run_compare_command(const CompareOptions& options) {
   CompareSettings settings;
   if (!options.engines.empty()) settings.engines = options.engines;
   check_engines(settings.engines, "--engines");
+  settings.engine_settings = parse_set_options(options.set, settings.engines);
   // Before the run (before even loading): a report directory that cannot be written fails now,
   // not after minutes.
   ReportDirectory dir(options.report, {options.scene}, kReportJson);

@@ -1,12 +1,12 @@
 // boxpile: run box-pile scenes in our simulator and in ODE and Bullet, and compare them.
 #include <iostream>
 
-#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/reference/ode/ode_engine.hpp"
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/collider_process.hpp"
 #include "boxpile/validation/detectors.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/report_directory.hpp"
 

@@ -10,7 +10,7 @@
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/interruptible.hpp"
 #include "boxpile/validation/cli/progress.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/engine_settings.hpp"
 #include "boxpile/validation/format_number.hpp"
 #include "boxpile/validation/json_output.hpp"
@@ -99,16 +99,9 @@ void add_run_command(CLI::App& app, RunOptions& options) {
       ->capture_default_str();
   cmd->add_option("--out", options.out,
                   "Write the frames as JSON to this file (atomically); without it, print a summary");
-  cmd->add_option("--ode-method", options.ode_method, "ODE's stepper: quickstep (dWorldQuickStep) or step (dWorldStep)")
-      ->check(CLI::IsMember({"quickstep", "step"}))
-      ->capture_default_str();
   cmd->add_option("--iterations", options.iterations,
-                  "Solver iterations: ODE QuickStep's (default 20) or Bullet's (default 10)");
-  cmd->add_option("--set", options.set,
-                  "Any setting of the engine as key=value, repeatable (e.g. --set erp=0.8 --set cfm=1e-5 for ode); "
-                  "`boxpile settings` lists them with units")
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+                  "The same as --set iterations=N: ODE QuickStep's passes (default 20) or Bullet's (default 10)");
+  add_set_option(*cmd, options.set);
   add_limit_options(*cmd, options.limits, true);
 }
 
@@ -123,18 +116,14 @@ int run_run(const RunOptions& options) {
   const double dt = scene.time.dt;
   const long steps = step_count(scene.time);
 
-  ReferenceSettings settings;
-  settings.ode_method = options.ode_method == "step" ? OdeStepMethod::Step : OdeStepMethod::QuickStep;
-  if (options.iterations) {
-    settings.ode_quickstep_iterations = *options.iterations;
-    settings.bullet_iterations = *options.iterations;
+  std::vector<std::string> words = options.set;
+  if (options.iterations) words.push_back("iterations=" + std::to_string(*options.iterations));
+  const nlohmann::json settings = parse_set_options(words, {options.engine})[options.engine];
+  if (settings.contains("iterations") && settings["iterations"].is_number_integer()) {
+    check_iterations(settings["iterations"].get<int>(), options.limits);
   }
-  if (!options.set.empty()) {
-    EngineConfig config{scene, settings};
-    apply_settings(options.engine, parse_setting_words(options.engine, options.set, "command line"), config);
-    scene = std::move(config.scene);
-    settings = config.reference;
-  }
+  // Our engine's settings are the scene's: the summary and the recording read the scene it runs.
+  scene = scene_with_settings(options.engine, scene, settings);
   const std::unique_ptr<Engine> engine = make_engine(options.engine, scene, settings);
   const bool record = out.has_value();
 

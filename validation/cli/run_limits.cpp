@@ -2,7 +2,7 @@
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/time_steps.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/registry.hpp"
 
 namespace boxpile::cli {
 
@@ -20,10 +20,21 @@ void add_limit_options(CLI::App& cmd, RunLimits& limits, bool iterations) {
   }
 }
 
-std::string engine_choices() {
+std::string engine_choices() { return available_engines_text(); }
+
+std::string engine_list(const std::vector<std::string>& names) {
   std::string list;
-  for (const std::string_view name : available_engine_names()) list += (list.empty() ? "" : ", ") + std::string(name);
+  for (const std::string& name : names) list += (list.empty() ? "" : ",") + name;
   return list;
+}
+
+void add_set_option(CLI::App& cmd, std::vector<std::string>& words) {
+  cmd.add_option("--set", words,
+                 "A setting of an engine as ENGINE.KEY=VALUE, repeatable (e.g. --set ode.erp=0.8 --set bullet.iterations=20; "
+                 "the ENGINE. prefix may be left out when one engine runs); `boxpile settings` lists them with units "
+                 "and ranges")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
 void add_time_options(CLI::App& cmd, std::optional<double>& dt, std::optional<double>& duration) {

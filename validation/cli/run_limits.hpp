@@ -36,8 +36,13 @@ struct RunLimits {
 void add_limit_options(CLI::App& cmd, RunLimits& limits, bool iterations);
 
 // "own, own-impulse, own-penalty, ode, bullet": the engines make_engine() can build, for help
-// texts (validation/engine_factory.hpp), so that they list exactly the names accepted.
+// texts (reference/registry.hpp), so that they list exactly the names accepted.
 std::string engine_choices();
+// "own,ode,bullet": a default engine list as a help text shows it.
+std::string engine_list(const std::vector<std::string>& names);
+
+// `--set [ENGINE.]KEY=VALUE`, repeatable (validation/engine_settings.hpp reads the words).
+void add_set_option(CLI::App& cmd, std::vector<std::string>& words);
 
 // --dt and --duration (no CLI11 check: NaN would pass it; apply_time_options checks).
 void add_time_options(CLI::App& cmd, std::optional<double>& dt, std::optional<double>& duration);

@@ -8,7 +8,8 @@
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/cli/report_command.hpp"
 #include "boxpile/validation/data_directory.hpp"
-#include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/validation/engine_settings.hpp"
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/stability.hpp"
 #include "boxpile/validation/stability_report.hpp"
@@ -46,7 +47,8 @@ void add_stability_command(CLI::App& app, StabilityOptions& options) {
       "stability", "Run the catalogue of hard scenes in every engine and judge each run by the scene's checks "
                    "(stability.json, stability.md, plots of failing cells). Exit 0 when our engine passes every "
                    "scene, 1 when it fails one (the reference engines' failures are reported, never fatal)");
-  cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() + " (default: own,ode,bullet)")->delimiter(',');
+  cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() + " (default: " + engine_list(default_engines(&DefaultLists::stability)) + ")")->delimiter(',');
+  add_set_option(*cmd, options.set);
   cmd->add_option("--scenes", options.scenes, "Scene files or directories of them (default: fixtures/hard/)");
   add_report_option(*cmd, options.report, "stability");
 }
@@ -61,6 +63,7 @@ int run_stability_command(const StabilityOptions& options) {
   StabilitySettings settings;
   if (!options.engines.empty()) settings.engines = options.engines;
   check_engines(settings.engines, "--engines");
+  settings.engine_settings = parse_set_options(options.set, settings.engines);
   ReportDirectory dir(options.report, {}, kStabilityJson);
 
   StabilityPrinter printer;

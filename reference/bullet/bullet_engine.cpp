@@ -1,4 +1,4 @@
-#include "boxpile/reference/bullet_engine.hpp"
+#include "boxpile/reference/bullet/bullet_engine.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -8,7 +8,7 @@
 #include <BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h>
 #include <Eigen/Eigenvalues>
 
-#include "boxpile/reference/bullet_support.hpp"
+#include "boxpile/reference/bullet/bullet_support.hpp"
 #include "boxpile/reference/convention.hpp"
 #include "boxpile/sim/world.hpp"
 
@@ -68,7 +68,7 @@ std::pair<Mat3, Vec3> principal_axes(const Mat3& inertia) {
 }  // namespace
 
 struct BulletEngine::World {
-  World(const Scene& scene, const ReferenceSettings& settings);
+  World(const Scene& scene, const BulletSettings& settings);
   ~World();
 
   void add_body(int index);
@@ -79,7 +79,7 @@ struct BulletEngine::World {
   OrientedBox box_at(int body, int shape, const btTransform& t) const;
 
   Scene scene;
-  ReferenceSettings settings;
+  BulletSettings settings;
   std::vector<RigidBody> bodies;
   std::vector<Quat> principal;  // per body: Bullet's body axes in our body axes (V above)
 
@@ -99,13 +99,13 @@ struct BulletEngine::World {
   std::uint64_t steps = 0;
 };
 
-BulletEngine::World::World(const Scene& s, const ReferenceSettings& st)
+BulletEngine::World::World(const Scene& s, const BulletSettings& st)
     : scene(s), settings(st), bodies(make_bodies(s)) {
   gCalculateCombinedFrictionCallback = &combined_friction;
   gCalculateCombinedRestitutionCallback = &combined_restitution;
-  if (settings.bullet_plane_iterations > 0) {
-    config.setPlaneConvexMultipointIterations(settings.bullet_plane_iterations,
-                                              settings.bullet_plane_min_points);
+  if (settings.plane_iterations > 0) {
+    config.setPlaneConvexMultipointIterations(settings.plane_iterations,
+                                              settings.plane_min_points);
   }
 
   // Gravity first: addRigidBody gives each body the world's gravity (Bullet's own default is
@@ -113,12 +113,12 @@ BulletEngine::World::World(const Scene& s, const ReferenceSettings& st)
   const Vec3 g = scene.effects.gravity ? scene.gravity : Vec3::Zero();
   world.setGravity(to_bt(g));
   btContactSolverInfo& info = world.getSolverInfo();
-  info.m_numIterations = settings.bullet_iterations;
-  info.m_erp = settings.bullet_erp;
-  info.m_erp2 = settings.bullet_split_erp;
-  info.m_globalCfm = settings.bullet_cfm;
-  info.m_splitImpulse = settings.bullet_split_impulse ? 1 : 0;
-  info.m_splitImpulsePenetrationThreshold = settings.bullet_split_impulse_threshold;
+  info.m_numIterations = settings.iterations;
+  info.m_erp = settings.erp;
+  info.m_erp2 = settings.split_erp;
+  info.m_globalCfm = settings.cfm;
+  info.m_splitImpulse = settings.split_impulse ? 1 : 0;
+  info.m_splitImpulsePenetrationThreshold = settings.split_impulse_threshold;
   info.m_restitutionVelocityThreshold = settings.restitution_threshold;
 
   tags.reserve(bodies.size() + 1);
@@ -271,7 +271,7 @@ void BulletEngine::World::read_contacts() {
   }
 }
 
-BulletEngine::BulletEngine(const Scene& scene, const ReferenceSettings& settings)
+BulletEngine::BulletEngine(const Scene& scene, const BulletSettings& settings)
     : world_(std::make_unique<World>(scene, settings)) {}
 
 BulletEngine::~BulletEngine() = default;

@@ -1,9 +1,9 @@
-#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/reference/ode/ode_engine.hpp"
 
 #include <cmath>
 #include <utility>
 
-#include "boxpile/reference/ode_support.hpp"
+#include "boxpile/reference/ode/ode_support.hpp"
 #include "boxpile/sim/world.hpp"
 
 namespace boxpile {
@@ -33,7 +33,7 @@ double damping_scale(double rate, double dt) { return 1.0 - std::exp(-rate * dt)
 }  // namespace
 
 struct OdeEngine::World {
-  World(const Scene& scene, const ReferenceSettings& settings);
+  World(const Scene& scene, const OdeSettings& settings);
   ~World();
 
   void build_world();
@@ -48,7 +48,7 @@ struct OdeEngine::World {
   }
 
   Scene scene;
-  ReferenceSettings settings;
+  OdeSettings settings;
   std::vector<RigidBody> bodies;  // mass properties, shapes about the centre of mass, frame offsets
 
   dWorldID world = nullptr;
@@ -64,13 +64,13 @@ struct OdeEngine::World {
   bool failed = false;  // an OdeError left ODE's state undefined
 };
 
-OdeEngine::World::World(const Scene& s, const ReferenceSettings& st)
+OdeEngine::World::World(const Scene& s, const OdeSettings& st)
     : scene(s), settings(st), bodies(make_bodies(s)) {
   ensure_ode_initialised();
   messages_at_start = ode_messages().count;
   // QuickStep shuffles its constraints with ODE's one global generator: the same seed for every
   // build makes runs repeatable (as long as two ODE worlds do not step interleaved).
-  dRandSetSeed(settings.ode_seed);
+  dRandSetSeed(settings.seed);
   build_world();
 }
 
@@ -84,13 +84,13 @@ void OdeEngine::World::build_world() {
   world = dWorldCreate();
   const Vec3 g = scene.effects.gravity ? scene.gravity : Vec3::Zero();
   dWorldSetGravity(world, g.x(), g.y(), g.z());
-  dWorldSetERP(world, settings.ode_erp);
-  dWorldSetCFM(world, settings.ode_cfm);
-  dWorldSetQuickStepNumIterations(world, settings.ode_quickstep_iterations);
-  dWorldSetQuickStepW(world, settings.ode_quickstep_sor);
-  dWorldSetContactSurfaceLayer(world, settings.ode_surface_layer);
-  if (std::isfinite(settings.ode_max_correcting_velocity)) {
-    dWorldSetContactMaxCorrectingVel(world, settings.ode_max_correcting_velocity);
+  dWorldSetERP(world, settings.erp);
+  dWorldSetCFM(world, settings.cfm);
+  dWorldSetQuickStepNumIterations(world, settings.quickstep_iterations);
+  dWorldSetQuickStepW(world, settings.quickstep_sor);
+  dWorldSetContactSurfaceLayer(world, settings.surface_layer);
+  if (std::isfinite(settings.max_correcting_velocity)) {
+    dWorldSetContactMaxCorrectingVel(world, settings.max_correcting_velocity);
   }
   dWorldSetAutoDisableFlag(world, 0);  // no sleeping
 
@@ -108,8 +108,8 @@ void OdeEngine::World::build_world() {
     if (scene.bodies[static_cast<std::size_t>(i)].wire) add_wire(i);
   }
 
-  scratch.resize(static_cast<std::size_t>(std::max(1, settings.ode_max_contacts)));
-  contacts.reserve(static_cast<std::size_t>(settings.ode_max_contacts) * geom_count);
+  scratch.resize(static_cast<std::size_t>(std::max(1, settings.max_contacts)));
+  contacts.reserve(static_cast<std::size_t>(settings.max_contacts) * geom_count);
 }
 
 void OdeEngine::World::add_body(int index) {
@@ -197,7 +197,7 @@ void OdeEngine::World::add_wire(int index) {
   dBodyID carriage = dBodyCreate(world);
   // The body's mass and inertia scaled down: rotation is locked by the slider, so the inertia
   // only sets the conditioning of the joint rows.
-  const double f = settings.ode_wire_carriage_mass_fraction;
+  const double f = settings.wire_carriage_mass_fraction;
   const Mat3 I = f * rb.inertia_body;
   dMass mass;
   dMassSetParameters(&mass, f * rb.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2));
@@ -299,7 +299,7 @@ void OdeEngine::World::collide_pair(dGeomID o1, dGeomID o2) {
   }
 }
 
-OdeEngine::OdeEngine(const Scene& scene, const ReferenceSettings& settings)
+OdeEngine::OdeEngine(const Scene& scene, const OdeSettings& settings)
     : world_(std::make_unique<World>(scene, settings)) {}
 
 // After an ODE error its world may be half-way through a step (its arena in use, joints attached):
@@ -326,7 +326,7 @@ void OdeEngine::step_world() {
   w.contacts.clear();
   dSpaceCollide(w.space, &w, &World::near_callback);
   w.add_wire_stops();
-  if (w.settings.ode_method == OdeStepMethod::Step) {
+  if (w.settings.method == OdeStepMethod::Step) {
     dWorldStep(w.world, w.scene.time.dt);
   } else {
     dWorldQuickStep(w.world, w.scene.time.dt);

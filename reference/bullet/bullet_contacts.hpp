@@ -1,7 +1,7 @@
-// ODE's and Bullet's contact sets for one query (box-box or box-plane), normalised to our
-// convention: position midway between the surfaces, normal from B toward A, depth > 0 when
-// penetrating. The feature id of a reference contact holds only its kind (FaceA, FaceB or
-// EdgeEdge judged from the normal, Plane for box-plane): the engines number no features.
+// Bullet's contact set for one query (box-box or box-plane), normalised to our convention:
+// position midway between the surfaces, normal from B toward A, depth > 0 when penetrating. The
+// feature id of a reference contact holds only its kind (FaceA, FaceB or EdgeEdge judged from the
+// normal, Plane for box-plane): Bullet numbers no features.
 #pragma once
 
 #include "boxpile/sim/collision/box.hpp"
@@ -9,12 +9,6 @@
 #include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
-
-// ODE's dCollide with room for 8 points: dBoxBox clips the incident face to the reference face
-// (up to 8 points), or gives one edge-edge point.
-Manifold ode_box_box(const OrientedBox& a, const OrientedBox& b);
-// ODE's dCollide of a box and a plane geom: at most 4 vertices, the deepest first.
-Manifold ode_box_plane(const OrientedBox& a, const HalfSpace& plane);
 
 // The points Bullet's solver would use: btBoxBoxDetector run through the dispatcher's collision
 // algorithm into a fresh persistent manifold (at most 4 points; points closer than the contact

@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "boxpile/reference/settings.hpp"
+#include "boxpile/reference/bullet/bullet_settings.hpp"
 #include "boxpile/sim/engine.hpp"
 #include "boxpile/sim/scene.hpp"
 
@@ -16,7 +16,7 @@ namespace boxpile {
 // sleeping. See docs/reference-engines.md for the mapping.
 class BulletEngine final : public Engine {
  public:
-  BulletEngine(const Scene& scene, const ReferenceSettings& settings = {});
+  BulletEngine(const Scene& scene, const BulletSettings& settings = {});
   ~BulletEngine() override;
   BulletEngine(const BulletEngine&) = delete;
   BulletEngine& operator=(const BulletEngine&) = delete;

@@ -1,11 +1,11 @@
-#include "boxpile/reference/ode_support.hpp"
+#include "boxpile/reference/ode/ode_support.hpp"
 
 #include <cstdarg>
 #include <cstdio>
 #include <mutex>
 
 #include "boxpile/reference/convention.hpp"
-#include "boxpile/reference/ode_engine.hpp"
+#include "boxpile/reference/ode/ode_engine.hpp"
 
 namespace boxpile {
 namespace {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "boxpile/reference/settings.hpp"
+#include "boxpile/reference/ode/ode_settings.hpp"
 #include "boxpile/sim/engine.hpp"
 #include "boxpile/sim/scene.hpp"
 
@@ -34,7 +34,7 @@ class OdeError : public std::runtime_error {
 // (mu a coefficient) rebuilt every step. See docs/reference-engines.md for the mapping.
 class OdeEngine final : public Engine {
  public:
-  OdeEngine(const Scene& scene, const ReferenceSettings& settings = {});
+  OdeEngine(const Scene& scene, const OdeSettings& settings = {});
   ~OdeEngine() override;
   OdeEngine(const OdeEngine&) = delete;
   OdeEngine& operator=(const OdeEngine&) = delete;

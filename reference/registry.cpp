@@ -1,0 +1,233 @@
+#include "boxpile/reference/registry.hpp"
+
+#include <algorithm>
+
+#include "boxpile/reference/bullet/bullet_contacts.hpp"
+#include "boxpile/reference/bullet/bullet_engine.hpp"
+#include "boxpile/reference/ode/ode_contacts.hpp"
+#include "boxpile/reference/ode/ode_engine.hpp"
+#include "boxpile/sim/collision/box_box.hpp"
+#include "boxpile/sim/collision/box_plane.hpp"
+#include "boxpile/sim/io/own_settings.hpp"
+#include "boxpile/sim/world.hpp"
+
+namespace boxpile {
+
+using nlohmann::json;
+
+Manifold DetectorInfo::detect(const ContactQuery& q, const DetectOptions& options) const {
+  const OrientedBox a = OrientedBox::from(q.a.pose, q.a.half_extents);
+  if (q.plane) return box_plane(a, *q.plane, options);
+  return box_box(a, OrientedBox::from(q.b->pose, q.b->half_extents), options);
+}
+
+namespace {
+
+// A reference engine E built from its settings struct S through S's table.
+template <class E, class S>
+EngineRow typed_row(std::string name, std::string title, const SettingsTable<S>& (*table)(), DefaultLists in,
+                    std::vector<DetectorInfo> detectors = {}) {
+  EngineRow row;
+  row.name = std::move(name);
+  row.title = std::move(title);
+  row.make = [table](const Scene& scene, const json& settings) -> std::unique_ptr<Engine> {
+    return std::make_unique<E>(scene, table().make(settings));
+  };
+  row.settings = [table] { return table().infos(); };
+  row.resolved = [table](const Scene&, const json& settings) { return table().values(table().make(settings)); };
+  row.detectors = std::move(detectors);
+  row.in = in;
+  return row;
+}
+
+// Our simulator: `method` forces the contact method whatever the scene's solver.method says (the
+// settings of the other method are then not offered), none runs each scene's own. Its settings
+// are the scene's solver and collision keys (sim/io/own_settings.hpp): given ones overwrite the
+// scene's.
+bool offered(const SettingInfo& s, std::optional<ContactSolver> method) {
+  if (!method) return true;
+  const std::optional<ContactSolver> group = setting_group_method(s);
+  return !group || group == method;
+}
+
+Scene own_scene(const Scene& scene, const json& settings, std::optional<ContactSolver> method) {
+  Scene s = scene;
+  if (method) s.solver.method = *method;
+  own_settings_table().apply(s, settings);
+  return s;
+}
+
+EngineRow own_row(std::string name, std::string title, std::optional<ContactSolver> method, DefaultLists in,
+                  std::vector<DetectorInfo> detectors = {}) {
+  EngineRow row;
+  row.name = name;
+  row.title = std::move(title);
+  row.make = [method, name](const Scene& scene, const json& settings) -> std::unique_ptr<Engine> {
+    if (!method) return std::make_unique<World>(own_scene(scene, settings, method));
+    return std::make_unique<World>(own_scene(scene, settings, method), name);
+  };
+  row.scene_with = [](const Scene& scene, const json& settings) { return own_scene(scene, settings, std::nullopt); };
+  row.settings = [method] {
+    std::vector<SettingInfo> out;
+    for (const Setting<Scene>& s : own_settings_table().rows())
+      if (offered(s.info, method)) out.push_back(s.info);
+    return out;
+  };
+  // The values the run reads: the scene's (with the given ones applied), and for "own" only the
+  // settings of the method the scene runs.
+  row.resolved = [method](const Scene& scene, const json& settings) {
+    const Scene s = own_scene(scene, settings, method);
+    json out = json::object();
+    for (const Setting<Scene>& r : own_settings_table().rows())
+      if (offered(r.info, method ? method : std::optional(s.solver.method))) out[r.info.key] = r.read(s);
+    return out;
+  };
+  row.detectors = std::move(detectors);
+  row.in = in;
+  return row;
+}
+
+Manifold own_box_box(const OrientedBox& a, const OrientedBox& b, const DetectOptions& options) {
+  Manifold m;
+  collide_box_box(a, b, options.own, m);
+  return m;
+}
+
+Manifold own_box_plane(const OrientedBox& a, const HalfSpace& plane, const DetectOptions& options) {
+  Manifold m;
+  collide_box_plane(a, plane, options.plane_margin, m);
+  return m;
+}
+
+// The built-in rows, in the order help texts list them. Adding an engine is one row here (and
+// its folder: see registry.hpp).
+std::vector<EngineRow> built_in_rows() {
+  std::vector<EngineRow> rows;
+  rows.push_back(own_row("own", "boxpile's simulator, the scene's solver.method (built in)", std::nullopt,
+                         {.compare = true, .stability = true},
+                         {{"own", "boxpile's separating-axis test with face clipping", false, &own_box_box,
+                           &own_box_plane}}));
+  rows.push_back(own_row("own-impulse", "boxpile's simulator, impulse method forced (built in)",
+                         ContactSolver::Impulse, {.main_job = true}));
+  rows.push_back(own_row("own-penalty", "boxpile's simulator, penalty method forced (built in)",
+                         ContactSolver::Penalty, {.main_job = true}));
+  rows.push_back(typed_row<OdeEngine>(
+      "ode", "ODE 0.16, double precision (Debian libode-dev, pkg-config ode)", &ode_settings_table,
+      {.compare = true, .stability = true, .main_job = true},
+      {{"ode", "ODE's dCollide (dBoxBox, box-plane)", false,
+        [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return ode_box_box(a, b); },
+        [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return ode_box_plane(a, p); }}}));
+  rows.push_back(typed_row<BulletEngine>(
+      "bullet", "Bullet 3.24, double precision (Debian libbullet-dev, pkg-config bullet-float64)",
+      &bullet_settings_table, {.compare = true, .stability = true, .main_job = true},
+      {{"bullet", "Bullet's btBoxBoxDetector through a persistent manifold", false,
+        [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return bullet_box_box(a, b); },
+        [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return bullet_box_plane(a, p); }},
+       {"bullet_multipoint", "Bullet with setPlaneConvexMultipointIterations(3, 3)", true,
+        [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return bullet_box_box(a, b); },
+        [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) {
+          return bullet_box_plane(a, p, kBulletMultipoint);
+        }}}));
+  return rows;
+}
+
+struct Registry {
+  std::deque<EngineRow> rows;
+  std::deque<DetectorInfo> detectors;
+
+  Registry() {
+    for (EngineRow& row : built_in_rows()) add(std::move(row));
+  }
+  void add(EngineRow row) {
+    if (row.name.empty()) throw std::invalid_argument("an engine row needs a name");
+    for (const EngineRow& r : rows)
+      if (r.name == row.name) throw std::invalid_argument("engine \"" + row.name + "\" is registered twice");
+    if (row.available() && !row.make) throw std::invalid_argument("engine \"" + row.name + "\" has no factory");
+    for (const DetectorInfo& d : row.detectors) {
+      for (const DetectorInfo& e : detectors)
+        if (e.name == d.name) throw std::invalid_argument("detector \"" + d.name + "\" is registered twice");
+      detectors.push_back(d);
+    }
+    rows.push_back(std::move(row));
+  }
+};
+
+Registry& registry() {
+  static Registry r;
+  return r;
+}
+
+}  // namespace
+
+void add_engine(EngineRow row) { registry().add(std::move(row)); }
+
+const EngineRow* find_engine_row(std::string_view name) {
+  for (const EngineRow& r : registry().rows)
+    if (r.name == name) return &r;
+  return nullptr;
+}
+
+std::vector<std::string> engine_names() {
+  std::vector<std::string> names;
+  for (const EngineRow& r : registry().rows) names.push_back(r.name);
+  return names;
+}
+
+std::vector<std::string> available_engine_names() {
+  std::vector<std::string> names;
+  for (const EngineRow& r : registry().rows)
+    if (r.available()) names.push_back(r.name);
+  return names;
+}
+
+std::string available_engines_text() {
+  std::string s;
+  for (const std::string& n : available_engine_names()) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+std::vector<std::string> default_engines(bool DefaultLists::*list) {
+  std::vector<std::string> names;
+  for (const EngineRow& r : registry().rows)
+    if (r.available() && r.in.*list) names.push_back(r.name);
+  return names;
+}
+
+const EngineRow& engine_row(std::string_view name) {
+  const EngineRow* row = find_engine_row(name);
+  if (!row) throw UnknownEngine("unknown engine \"" + std::string(name) + "\"; available: " + available_engines_text());
+  if (!row->available()) {
+    throw UnknownEngine("engine \"" + std::string(name) + "\": " + row->unavailable +
+                        "; available: " + available_engines_text());
+  }
+  return *row;
+}
+
+void check_engine_name(std::string_view name) { engine_row(name); }
+
+std::unique_ptr<Engine> make_engine(std::string_view name, const Scene& scene, const json& settings) {
+  return engine_row(name).make(scene, settings.is_null() ? json::object() : settings);
+}
+
+Scene scene_with_settings(std::string_view name, const Scene& scene, const json& settings) {
+  const EngineRow& row = engine_row(name);
+  return row.scene_with ? row.scene_with(scene, settings.is_null() ? json::object() : settings) : scene;
+}
+
+std::vector<SettingInfo> engine_settings(std::string_view name) {
+  const EngineRow& row = engine_row(name);
+  return row.settings ? row.settings() : std::vector<SettingInfo>{};
+}
+
+json resolved_settings(std::string_view name, const Scene& scene, const json& settings) {
+  const EngineRow& row = engine_row(name);
+  const json given = settings.is_null() ? json::object() : settings;
+  if (row.resolved) return row.resolved(scene, given);
+  json out = json::object();
+  for (const SettingInfo& s : engine_settings(name)) out[s.key] = given.contains(s.key) ? given[s.key] : s.default_value;
+  return out;
+}
+
+const std::deque<DetectorInfo>& detectors() { return registry().detectors; }
+
+}  // namespace boxpile
