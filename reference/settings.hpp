@@ -5,6 +5,8 @@
 
 #include <limits>
 
+#include "boxpile/reference/mujoco/mujoco_settings.hpp"
+
 namespace boxpile {
 
 enum class OdeStepMethod {
@@ -59,6 +61,9 @@ struct ReferenceSettings {
   // Approach speeds below this bounce with no restitution, m/s (ODE bounce_vel, Bullet
   // m_restitutionVelocityThreshold; Bullet's default).
   double restitution_threshold = 0.2;
+
+  // --- MuJoCo 2.2.2 (reference/mujoco/mujoco_settings.hpp) ----------------------------------
+  MujocoSettings mujoco;
 };
 
 }  // namespace boxpile

@@ -3,6 +3,7 @@
 #include <array>
 #include <string>
 
+#include "boxpile/reference/mujoco/mujoco_contacts.hpp"
 #include "boxpile/reference/reference_contacts.hpp"
 #include "boxpile/sim/collision/box_box.hpp"
 #include "boxpile/sim/collision/box_plane.hpp"
@@ -26,16 +27,19 @@ Manifold ode_pair(const OrientedBox& a, const OrientedBox& b, const DetectOption
 Manifold ode_plane(const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return ode_box_plane(a, p); }
 Manifold bullet_pair(const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return bullet_box_box(a, b); }
 Manifold bullet_plane(const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return bullet_box_plane(a, p); }
+Manifold mujoco_pair(const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return mujoco_box_box(a, b); }
+Manifold mujoco_plane(const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return mujoco_box_plane(a, p); }
 Manifold multipoint_plane(const OrientedBox& a, const HalfSpace& p, const DetectOptions&) {
   return bullet_box_plane(a, p, kBulletMultipoint);
 }
 
-const std::array<DetectorInfo, 4> kDetectors = {{
+const std::array<DetectorInfo, 5> kDetectors = {{
     {kOwnDetector, "boxpile's separating-axis test with face clipping", false, &own_box_box, &own_box_plane},
     {"ode", "ODE's dCollide (dBoxBox, box-plane)", false, &ode_pair, &ode_plane},
     {"bullet", "Bullet's btBoxBoxDetector through a persistent manifold", false, &bullet_pair, &bullet_plane},
     {"bullet_multipoint", "Bullet with setPlaneConvexMultipointIterations(3, 3)", true, &bullet_pair,
      &multipoint_plane},
+    {"mujoco", "MuJoCo 2.2.2's collision table (mjc_BoxBox, mjc_PlaneBox)", false, &mujoco_pair, &mujoco_plane},
 }};
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <array>
 
 #include "boxpile/reference/bullet_engine.hpp"
+#include "boxpile/reference/mujoco/mujoco_engine.hpp"
 #include "boxpile/reference/ode_engine.hpp"
 #include "boxpile/sim/world.hpp"
 
@@ -28,6 +29,10 @@ std::unique_ptr<Engine> build(const Scene& scene, const ReferenceSettings& setti
   return std::make_unique<E>(scene, settings);
 }
 
+std::unique_ptr<Engine> build_mujoco(const Scene& scene, const ReferenceSettings& settings) {
+  return std::make_unique<MujocoEngine>(scene, settings.mujoco);
+}
+
 std::unique_ptr<Engine> build_own(const Scene& scene, const ReferenceSettings&) {
   return std::make_unique<World>(scene);
 }
@@ -42,12 +47,13 @@ std::unique_ptr<Engine> build_own_with(const Scene& scene, const ReferenceSettin
 }
 
 // Adding an engine is one line here.
-constexpr std::array<EngineEntry, 5> kEngines = {{
+constexpr std::array<EngineEntry, 6> kEngines = {{
     {"own", &build_own, ""},
     {"own-impulse", &build_own_with<ContactSolver::Impulse>, ""},
     {"own-penalty", &build_own_with<ContactSolver::Penalty>, ""},
     {"ode", &build<OdeEngine>, ""},
     {"bullet", &build<BulletEngine>, ""},
+    {"mujoco", &build_mujoco, ""},
 }};
 
 constexpr std::array<std::string_view, kEngines.size()> kAllNames = [] {

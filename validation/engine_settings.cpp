@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "boxpile/reference/mujoco/mujoco_setting_table.hpp"
 #include "boxpile/sim/solver/step_context.hpp"
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/validation/engine_factory.hpp"
@@ -185,6 +186,7 @@ std::span<const EngineSetting> engine_settings(std::string_view engine) {
   check_engine_name(engine);
   if (engine == "ode") return kOdeSettings;
   if (engine == "bullet") return kBulletSettings;
+  if (engine == "mujoco") return mujoco_setting_table();
   if (engine == "own-impulse") return kImpulseSettings;
   if (engine == "own-penalty") return kPenaltySettings;
   if (engine == "own") return kOwnSettings;
