@@ -103,7 +103,11 @@ std::string ground_element(const HalfSpace& h, const std::string& contact) {
 
 // A body on a wire: a slide joint along the wire (its range the wire's ends, measured from the
 // start position) and then a ball joint at the anchor, both in MuJoCo's body frame (the scene's).
-std::string wire_joints(int index, const BodyDesc& desc) {
+// The ends are the slide's limits, soft constraints like every MuJoCo constraint: their time
+// constant is the shortest MuJoCo keeps (kLimitSteps steps; it raises shorter ones to that), so
+// that a body hitting an end passes it as little as MuJoCo allows.
+constexpr double kLimitSteps = 2.0;
+std::string wire_joints(int index, const BodyDesc& desc, double dt) {
   const Wire& w = *desc.wire;
   const Vec3 along = w.to - w.from;
   const double length = along.norm();
@@ -112,17 +116,18 @@ std::string wire_joints(int index, const BodyDesc& desc) {
   const std::string name = mujoco_body_name(index);
   return "      <joint name=\"" + name + "_slide\" type=\"slide\" pos=\"" + vec(w.anchor) + "\" axis=\"" +
          vec(desc.frame.orientation.conjugate() * axis) + "\" limited=\"true\" range=\"" + num(-s0) + " " +
-         num(length - s0) + "\"/>\n" + "      <joint name=\"" + name + "_ball\" type=\"ball\" pos=\"" +
+         num(length - s0) + "\" solreflimit=\"" + num(kLimitSteps * dt) + " 1\"/>\n" + "      <joint name=\"" + name + "_ball\" type=\"ball\" pos=\"" +
          vec(w.anchor) + "\"/>\n";
 }
 
-std::string body_element(int index, const BodyDesc& desc, const RigidBody& rb, const std::string& contact) {
+std::string body_element(int index, const BodyDesc& desc, const RigidBody& rb, const std::string& contact,
+                         double dt) {
   const std::string name = mujoco_body_name(index);
   std::string x = "    <body name=\"" + name + "\" pos=\"" + vec(desc.frame.position) + "\" quat=\"" +
                   quat(desc.frame.orientation) + "\">\n";
   if (!rb.fixed) {
     if (desc.wire) {
-      x += wire_joints(index, desc);
+      x += wire_joints(index, desc, dt);
     } else {
       x += "      <freejoint name=\"" + name + "_free\"/>\n";
     }
@@ -200,7 +205,7 @@ std::string mujoco_mjcf(const Scene& scene, const std::vector<RigidBody>& bodies
   if (scene.ground) x += ground_element(*scene.ground, ground_contact);
   for (int i = 0; i < n; ++i) {
     x += body_element(i, scene.bodies[static_cast<std::size_t>(i)], bodies[static_cast<std::size_t>(i)],
-                      contact[static_cast<std::size_t>(i)]);
+                      contact[static_cast<std::size_t>(i)], scene.time.dt);
   }
   x += "  </worldbody>\n";
   if (!pairs.empty()) x += "  <contact>\n" + pairs + "  </contact>\n";
