@@ -1,4 +1,4 @@
-// Time per step of our engine and the reference engines (ODE QuickStep, Bullet), each at its
+// Time per step of our engine and the reference engines (ODE QuickStep, Bullet, MuJoCo), each at its
 // defaults, on the shared scenes and on generated ones:
 //   step_scene    stack_5, stack_10 and pile_100 from fixtures/scenes, through their whole
 //                 duration (5 s at dt 1/240, 1,200 steps): the falling and the resting phase;
@@ -66,6 +66,8 @@ BENCHMARK_CAPTURE(step_scene, stack_5/ode_worldstep, "stack_5", "ode", ode_world
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_5/bullet, "stack_5", "bullet", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, stack_5/mujoco, "stack_5", "mujoco", nlohmann::json::object())
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_5/own, "stack_5", "own", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_10/own, "stack_10", "own", nlohmann::json::object())
@@ -74,6 +76,8 @@ BENCHMARK_CAPTURE(step_scene, stack_10/ode_quickstep, "stack_10", "ode", nlohman
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_10/bullet, "stack_10", "bullet", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, stack_10/mujoco, "stack_10", "mujoco", nlohmann::json::object())
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, pile_100/own, "pile_100", "own", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
@@ -81,6 +85,9 @@ BENCHMARK_CAPTURE(step_scene, pile_100/ode_quickstep, "pile_100", "ode", nlohman
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
 BENCHMARK_CAPTURE(step_scene, pile_100/bullet, "pile_100", "bullet", nlohmann::json::object())
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
+BENCHMARK_CAPTURE(step_scene, pile_100/mujoco, "pile_100", "mujoco", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
 

@@ -4,6 +4,8 @@
 
 #include "boxpile/reference/bullet/bullet_contacts.hpp"
 #include "boxpile/reference/bullet/bullet_engine.hpp"
+#include "boxpile/reference/mujoco/mujoco_contacts.hpp"
+#include "boxpile/reference/mujoco/mujoco_engine.hpp"
 #include "boxpile/reference/ode/ode_contacts.hpp"
 #include "boxpile/reference/ode/ode_engine.hpp"
 #include "boxpile/sim/collision/box_box.hpp"
@@ -128,6 +130,12 @@ std::vector<EngineRow> built_in_rows() {
         [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) {
           return bullet_box_plane(a, p, kBulletMultipoint);
         }}}));
+  rows.push_back(typed_row<MujocoEngine>(
+      "mujoco", "MuJoCo 2.2.2, double precision, C API (Debian libmujoco-dev)", &mujoco_settings_table,
+      {},
+      {{"mujoco", "MuJoCo 2.2.2's collision table (mjc_BoxBox, mjc_PlaneBox)", false,
+        [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return mujoco_box_box(a, b); },
+        [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return mujoco_box_plane(a, p); }}}));
   return rows;
 }
 

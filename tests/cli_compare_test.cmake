@@ -42,6 +42,18 @@ expect_json("${replay}" ${last_contacts} engines 1 contact_counts 3)
 if(last_contacts LESS 5)  # five boxes rest on each other and on the ground
   fail("compare: bullet's frame 3 holds ${last_contacts} contact points, expected at least 5")
 endif()
+# MuJoCo beside ODE in one compare: both run, and the report holds their pair.
+run_boxpile(0 compare "${stack}" --engines ode,mujoco --duration 0.25 --report "${WORK}/report_mujoco")
+expect_contains("${out}" "ode vs mujoco")
+file(READ "${WORK}/report_mujoco/report.json" mujoco_report)
+string(JSON mujoco_ideal GET "${mujoco_report}" engines mujoco stacks 0 ideal)
+if(NOT mujoco_ideal EQUAL 5)
+  fail("compare: mujoco's stack of five has ideal height ${mujoco_ideal}, expected 5")
+endif()
+string(JSON mujoco_contacts GET "${mujoco_report}" engines mujoco series contacts 3)
+if(mujoco_contacts LESS 5)
+  fail("compare: mujoco's frame 3 holds ${mujoco_contacts} contact points, expected at least 5")
+endif()
 # `boxpile view DIR` makes the page again, to another file; a directory that is not a report fails.
 run_boxpile(0 view "${WORK}/report" --out "${WORK}/again.html")
 expect_contains("${out}" "again.html")
@@ -74,7 +86,7 @@ if(NOT n EQUAL 1)
 endif()
 
 # --- bad input: exit 2, a message, nothing written ---
-expect_refused("unknown engine \"physx\"; available: own, own-impulse, own-penalty, ode, bullet" "${WORK}/bad_engine"
+expect_refused("unknown engine \"physx\"; available: own, own-impulse, own-penalty, ode, bullet, mujoco" "${WORK}/bad_engine"
                compare "${stack}" --engines own,physx --report "${WORK}/bad_engine")
 expect_refused("missing.json" "${WORK}/bad_scene" compare "${WORK}/missing.json" --report "${WORK}/bad_scene")
 expect_refused("overlap.json" "${WORK}/bad_overlap" compare "${FIXTURES}/bad/overlap.json" --report "${WORK}/bad_overlap")

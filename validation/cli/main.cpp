@@ -1,6 +1,7 @@
 // boxpile: run box-pile scenes in our simulator and in ODE and Bullet, and compare them.
 #include <iostream>
 
+#include "boxpile/reference/mujoco/mujoco_messages.hpp"
 #include "boxpile/reference/ode/ode_engine.hpp"
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/validation/cli/commands.hpp"
@@ -74,6 +75,9 @@ int main(int argc, char** argv) {
     return run_compare_command(default_compare_options());
   } catch (const boxpile::OdeError& e) {
     std::cerr << "boxpile: error: " << e.what() << " (the input is outside what ODE can take)\n";
+    return kExitBadInput;
+  } catch (const boxpile::MujocoError& e) {
+    std::cerr << "boxpile: error: " << e.what() << " (the input is outside what MuJoCo can take)\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "boxpile: error: " << e.what() << '\n';

@@ -1,0 +1,88 @@
+#include "boxpile/reference/mujoco/mujoco_settings.hpp"
+
+#include "boxpile/reference/limits.hpp"
+
+namespace boxpile {
+
+using nlohmann::json;
+using Kind = SettingInfo::Kind;
+
+namespace {
+
+// solimp's impedances lie in MuJoCo's open interval (mjMINIMP, mjMAXIMP) = (0.0001, 0.9999).
+constexpr double kLeastImpedance = 0.0001, kLargestImpedance = 0.9999;
+// Longest contact time constant, transition width and largest ratios a setting may name: none
+// has a meaning for boxes of centimetres to metres beyond these.
+constexpr double kLongestTimeconst = 10.0;  // s
+constexpr double kWidestTransition = 1.0;   // m
+constexpr double kLeastRatio = 1e-3, kLargestRatio = 1e3;
+
+const char* solver_name(MujocoSolver s) {
+  return s == MujocoSolver::PGS ? "pgs" : s == MujocoSolver::CG ? "cg" : "newton";
+}
+const char* integrator_name(MujocoIntegrator i) {
+  return i == MujocoIntegrator::RK4 ? "rk4" : i == MujocoIntegrator::Implicit ? "implicit" : "euler";
+}
+
+}  // namespace
+
+const SettingsTable<MujocoSettings>& mujoco_settings_table() {
+  using S = MujocoSettings;
+  static const SettingsTable<MujocoSettings> table{
+      {{"solver", Kind::Choice, "", "constraint solver: projected Gauss-Seidel, conjugate gradient or Newton", 0, 0,
+        {"pgs", "cg", "newton"}},
+       [](S& s, const json& v) {
+         const std::string n = v.get<std::string>();
+         s.solver = n == "pgs" ? MujocoSolver::PGS : n == "cg" ? MujocoSolver::CG : MujocoSolver::Newton;
+       },
+       [](const S& s) { return json(solver_name(s.solver)); }},
+      {{"iterations", Kind::Integer, "", "most main-solver iterations per step", 1, reference_limits::kMaxIterations},
+       [](S& s, const json& v) { s.iterations = v.get<int>(); }, [](const S& s) { return json(s.iterations); }},
+      {{"tolerance", Kind::Number, "", "main solver stops when its relative improvement is below this (0: never)", 0,
+        1},
+       [](S& s, const json& v) { s.tolerance = v.get<double>(); }, [](const S& s) { return json(s.tolerance); }},
+      {{"cone", Kind::Choice, "", "friction cone", 0, 0, {"pyramidal", "elliptic"}},
+       [](S& s, const json& v) {
+         s.cone = v.get<std::string>() == "elliptic" ? MujocoCone::Elliptic : MujocoCone::Pyramidal;
+       },
+       [](const S& s) { return json(s.cone == MujocoCone::Elliptic ? "elliptic" : "pyramidal"); }},
+      {{"solref_timeconst", Kind::Number, "s", "time constant of the contacts' spring-damper (MuJoCo raises it to 2 dt)",
+        1e-6, kLongestTimeconst},
+       [](S& s, const json& v) { s.solref_timeconst = v.get<double>(); },
+       [](const S& s) { return json(s.solref_timeconst); }},
+      {{"solref_dampratio", Kind::Number, "", "damping ratio of the contacts' spring-damper (1: critical)", kLeastRatio,
+        kLargestRatio},
+       [](S& s, const json& v) { s.solref_dampratio = v.get<double>(); },
+       [](const S& s) { return json(s.solref_dampratio); }},
+      {{"solimp_dmin", Kind::Number, "", "contact impedance at zero penetration", kLeastImpedance, kLargestImpedance},
+       [](S& s, const json& v) { s.solimp_dmin = v.get<double>(); }, [](const S& s) { return json(s.solimp_dmin); }},
+      {{"solimp_dmax", Kind::Number, "", "contact impedance from solimp_width deep on", kLeastImpedance,
+        kLargestImpedance},
+       [](S& s, const json& v) { s.solimp_dmax = v.get<double>(); }, [](const S& s) { return json(s.solimp_dmax); }},
+      {{"solimp_width", Kind::Number, "m", "penetration over which the impedance goes from dmin to dmax", 0,
+        kWidestTransition},
+       [](S& s, const json& v) { s.solimp_width = v.get<double>(); },
+       [](const S& s) { return json(s.solimp_width); }},
+      {{"noslip_iterations", Kind::Integer, "", "iterations of the noslip solver after the main one (0: off)", 0,
+        reference_limits::kMaxIterations},
+       [](S& s, const json& v) { s.noslip_iterations = v.get<int>(); },
+       [](const S& s) { return json(s.noslip_iterations); }},
+      {{"impratio", Kind::Number, "", "frictional over normal constraint impedance (elliptic cones)", kLeastRatio,
+        kLargestRatio},
+       [](S& s, const json& v) { s.impratio = v.get<double>(); }, [](const S& s) { return json(s.impratio); }},
+      {{"integrator", Kind::Choice, "",
+        "semi-implicit Euler, 4th-order Runge-Kutta or implicit in velocity (the last two need the scene's "
+        "gyroscopic effect on)",
+        0, 0, {"euler", "rk4", "implicit"}},
+       [](S& s, const json& v) {
+         const std::string n = v.get<std::string>();
+         s.integrator = n == "rk4"        ? MujocoIntegrator::RK4
+                        : n == "implicit" ? MujocoIntegrator::Implicit
+                                          : MujocoIntegrator::Euler;
+       },
+       [](const S& s) { return json(integrator_name(s.integrator)); }},
+  };
+  return table;
+}
+
+}  // namespace boxpile
