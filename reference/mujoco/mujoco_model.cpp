@@ -148,7 +148,9 @@ std::string body_element(int index, const BodyDesc& desc, const RigidBody& rb, c
 
 }  // namespace
 
-std::string mujoco_body_name(int body) { return "b" + std::to_string(body); }
+// Appended rather than `"b" + std::to_string(body)`, on which GCC 12 at -O3 warns falsely
+// (-Wrestrict inside basic_string::replace).
+std::string mujoco_body_name(int body) { return std::string("b").append(std::to_string(body)); }
 std::string mujoco_geom_name(int body, int shape) { return mujoco_body_name(body) + "_" + std::to_string(shape); }
 
 double damping_ratio_for_restitution(double e) {
