@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <vector>
 
 #include "boxpile/reference/bullet_engine.hpp"
 #include "boxpile/reference/ode_engine.hpp"
 #include "boxpile/sim/world.hpp"
+#include "boxpile/validation/process_engines.hpp"
 
 namespace boxpile {
 namespace {
@@ -50,39 +52,56 @@ constexpr std::array<EngineEntry, 5> kEngines = {{
     {"bullet", &build<BulletEngine>, ""},
 }};
 
-constexpr std::array<std::string_view, kEngines.size()> kAllNames = [] {
+constexpr std::array<std::string_view, kEngines.size()> kLinkedNames = [] {
   std::array<std::string_view, kEngines.size()> names{};
   for (std::size_t i = 0; i < kEngines.size(); ++i) names[i] = kEngines[i].name;
   return names;
 }();
 
-constexpr std::size_t kAvailableCount = static_cast<std::size_t>(
-    std::count_if(kEngines.begin(), kEngines.end(), available));
+// The name lists with the engines over the protocol after the linked ones, rebuilt when a row is
+// added to that table.
+struct NameLists {
+  int generation = -1;
+  std::vector<std::string_view> all, available;
+};
 
-constexpr std::array<std::string_view, kAvailableCount> kAvailableNames = [] {
-  std::array<std::string_view, kAvailableCount> names{};
-  std::size_t k = 0;
-  for (const EngineEntry& e : kEngines)
-    if (available(e)) names[k++] = e.name;
-  return names;
-}();
+const NameLists& name_lists() {
+  static NameLists lists;
+  if (lists.generation == process_engines_generation()) return lists;
+  lists = {process_engines_generation(), {}, {}};
+  for (const EngineEntry& e : kEngines) {
+    lists.all.push_back(e.name);
+    if (available(e)) lists.available.push_back(e.name);
+  }
+  for (const ProcessEngineRow& row : process_engines()) {
+    lists.all.push_back(row.name);
+    if (row.unavailable.empty()) lists.available.push_back(row.name);
+  }
+  return lists;
+}
 
 std::string available_list() {
   std::string s;
-  for (std::string_view n : kAvailableNames) s += (s.empty() ? "" : ", ") + std::string(n);
+  for (std::string_view n : name_lists().available) s += (s.empty() ? "" : ", ") + std::string(n);
   return s;
 }
 
 }  // namespace
 
-std::span<const std::string_view> engine_names() { return kAllNames; }
-std::span<const std::string_view> available_engine_names() { return kAvailableNames; }
+std::span<const std::string_view> engine_names() { return name_lists().all; }
+std::span<const std::string_view> available_engine_names() { return name_lists().available; }
+std::span<const std::string_view> linked_engine_names() { return kLinkedNames; }
 
 void check_engine_name(std::string_view name) {
   for (const EngineEntry& e : kEngines) {
     if (e.name != name) continue;
     if (available(e)) return;
     throw UnknownEngine("engine \"" + std::string(name) + "\": " + std::string(e.unavailable) +
+                        "; available: " + available_list());
+  }
+  if (const ProcessEngineRow* row = find_process_engine(name)) {
+    if (row->unavailable.empty()) return;
+    throw UnknownEngine("engine \"" + std::string(name) + "\" is unavailable: " + row->unavailable +
                         "; available: " + available_list());
   }
   throw UnknownEngine("unknown engine \"" + std::string(name) + "\"; available: " + available_list());
@@ -94,6 +113,7 @@ std::unique_ptr<Engine> make_engine(std::string_view name, const Scene& scene,
   for (const EngineEntry& e : kEngines) {
     if (e.name == name) return e.make(scene, settings);
   }
+  if (const ProcessEngineRow* row = find_process_engine(name)) return make_process_engine(*row, scene);
   return nullptr;  // not reached: check_engine_name() has thrown
 }
 

@@ -4,6 +4,9 @@
 #include "boxpile/reference/ode_engine.hpp"
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/engine_command_options.hpp"
+#include "boxpile/reference/process/process_engine.hpp"
+#include "boxpile/validation/process_engines.hpp"
 #include "boxpile/validation/collider_process.hpp"
 #include "boxpile/validation/detectors.hpp"
 #include "boxpile/validation/engine_factory.hpp"
@@ -12,13 +15,14 @@
 
 namespace {
 
-// Errors of the user's input (a file, a name, a flag, an output path, a collider, a scene outside
-// what ODE can take): exit 2; anything else 1.
+// Errors of the user's input (a file, a name, a flag, an output path, a collider, an engine that
+// breaks docs/engine-protocol.md, a scene outside what ODE can take): exit 2; anything else 1.
 bool is_bad_input(const std::exception& e) {
   return dynamic_cast<const boxpile::InputError*>(&e) || dynamic_cast<const boxpile::UnknownEngine*>(&e) ||
          dynamic_cast<const boxpile::UnknownDetector*>(&e) || dynamic_cast<const boxpile::ColliderError*>(&e) ||
          dynamic_cast<const boxpile::OutputError*>(&e) || dynamic_cast<const boxpile::cli::UsageError*>(&e) ||
-         dynamic_cast<const boxpile::OdeError*>(&e);
+         dynamic_cast<const boxpile::OdeError*>(&e) || dynamic_cast<const boxpile::EngineProtocolError*>(&e) ||
+         dynamic_cast<const boxpile::EngineCommandError*>(&e);
 }
 
 }  // namespace
@@ -47,6 +51,11 @@ int main(int argc, char** argv) {
   add_conform_command(app, conform);
   ViewOptions view;
   add_view_command(app, view);
+  // The commands that run engines take engines over the protocol too.
+  EngineCommandOptions engine_commands;
+  for (const char* name : {"run", "compare", "stability", "sweep"}) {
+    add_engine_command_options(*app.get_subcommand(name), engine_commands);
+  }
 
   try {
     app.parse(argc, argv);
@@ -60,6 +69,7 @@ int main(int argc, char** argv) {
   }
 
   try {
+    apply_engine_command_options(engine_commands);
     if (app.got_subcommand("contacts")) return run_contacts(contacts);
     if (app.got_subcommand("run")) return run_run(run);
     if (app.got_subcommand("compare")) return run_compare_command(compare);
