@@ -125,9 +125,12 @@ TEST_CASE("a box resting on the ground in the Python example engine stays at res
     drift = std::max(drift, (states[0].position - start[0].position).norm());
     speed = states[0].velocity.norm();
   }
-  // Gravity's one step of velocity (|g| dt = 0.04 m/s at 1/240 s) is taken out by the contacts
-  // every step; the box may sink to the slop (1e-4 m) and no further.
-  CHECK(drift < 1.5e-4);
+  // The box starts exactly on the ground, where no vertex is below the plane yet: it falls one
+  // step, g dt^2 = 1.70e-4 m, before its corners touch; then the overlap bias lifts it back to
+  // the slop (1e-4 m deep) and it stays there, still.
+  const double one_step = scene.gravity.norm() * scene.time.dt * scene.time.dt;
+  CHECK(drift < one_step * (1.0 + 1e-9));
+  CHECK(std::abs(states[0].position.z() - start[0].position.z()) < 1.05e-4);
   CHECK(speed < 1e-3);
   std::vector<boxpile::BodyContact> contacts;
   engine.contacts(contacts);
@@ -166,7 +169,7 @@ TEST_CASE("broken engines are refused naming the engine, the request and the ste
 TEST_CASE("an engine that does not answer within the timeout is stopped, and no child outlives it", "[protocol]") {
   const boxpile::Scene scene = fixture("scenes/stack_5.json");
   ProcessEngineOptions o = options("sleeper", broken_engine("sleep"));
-  o.timeout = std::chrono::milliseconds(300);
+  o.timeout = std::chrono::milliseconds(3000);  // Python starts well within it, even under load
   pid_t pid = -1;
   try {
     ProcessEngine engine(scene, std::move(o));
@@ -175,7 +178,7 @@ TEST_CASE("an engine that does not answer within the timeout is stopped, and no 
     engine.step();
     FAIL("no timeout");
   } catch (const boxpile::EngineProtocolError& e) {
-    CHECK_THAT(e.what(), Catch::Contains("step 1: no answer within 0.3 s (--engine-timeout)"));
+    CHECK_THAT(e.what(), Catch::Contains("step 1: no answer within 3 s (--engine-timeout)"));
   }
   REQUIRE(pid > 0);
   CHECK_FALSE(process_exists(pid));  // killed and reaped: not even a zombie

@@ -51,7 +51,7 @@ TEST_CASE("broken step answers are refused naming what is wrong", "[protocol]") 
   require_refused(R"({"ok": false, "error": "diverged"})", one, "ok: false: diverged");
   require_refused(step_line(kBody + "," + kBody), one, "\"bodies\" has 2 entries; the scene has 1 bodies");
   require_refused(R"({"ok": true, "time": NaN, "bodies": []})", one, "not finite (NaN)");
-  require_refused(R"({"ok": true, "time": 1e400, "bodies": []})", one, "\"time\" is not finite");
+  require_refused(R"({"ok": true, "time": 1e400, "bodies": []})", one, "is not JSON");  // beyond a double
   require_refused(R"({"ok": true, "time": null, "bodies": []})", one, "\"time\" is null");
   require_refused(step_line(R"({"position": [0, 0], "orientation": [1, 0, 0, 0], "velocity": [0, 0, 0], "angular_velocity": [0, 0, 0]})"),
                   one, "\"bodies[0].position\" has 2 numbers, not 3");

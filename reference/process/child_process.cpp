@@ -21,6 +21,10 @@ constexpr std::chrono::milliseconds kExitPoll{10};
 constexpr std::size_t kStderrKept = 4096;
 constexpr int kStderrLinesShown = 8;
 
+// The watcher's answer to boxpile's death (its parent-death signal) and to SIGTERM: the whole
+// process group, itself included, killed at once. Async-signal-safe.
+extern "C" void kill_own_group(int) { kill(0, SIGKILL); }
+
 void close_fd(int& fd) {
   if (fd >= 0) close(fd);
   fd = -1;
@@ -39,17 +43,39 @@ ChildProcess::ChildProcess(std::string command, StandardError standard_error, st
   pid_ = fork();
   if (pid_ < 0) throw ChildStartError(std::string("cannot fork: ") + std::strerror(errno));
   if (pid_ == 0) {
-    // The child: its own process group (a timeout kills the shell and what it started, and a
-    // Ctrl-C at the terminal reaches boxpile alone, which then stops it), killed with boxpile.
+    // The watcher: the leader of the child's own process group (a timeout kills the shell and
+    // everything it started, and a Ctrl-C at the terminal reaches boxpile alone), which kills
+    // that group when boxpile dies, however it dies. PR_SET_PDEATHSIG alone would reach the shell
+    // only: /bin/sh -c may fork the program instead of replacing itself by it.
     setpgid(0, 0);
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (getppid() != parent) _exit(127);  // boxpile died before the line above
-    signal(SIGPIPE, SIG_DFL);
-    dup2(in[0], STDIN_FILENO);
-    dup2(out[1], STDOUT_FILENO);
-    if (keep_stderr) dup2(err[1], STDERR_FILENO);
-    execl("/bin/sh", "sh", "-c", command_.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
+    signal(SIGINT, SIG_IGN);
+    signal(SIGTERM, kill_own_group);
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) kill_own_group(SIGTERM);  // boxpile died before the line above
+    const pid_t program = fork();
+    if (program == 0) {
+      signal(SIGINT, SIG_DFL);
+      signal(SIGTERM, SIG_DFL);
+      signal(SIGPIPE, SIG_DFL);
+      dup2(in[0], STDIN_FILENO);
+      dup2(out[1], STDOUT_FILENO);
+      if (keep_stderr) dup2(err[1], STDERR_FILENO);
+      execl("/bin/sh", "sh", "-c", command_.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    for (int fd : {in[0], in[1], out[0], out[1], err[0], err[1]}) {
+      if (fd >= 0) close(fd);
+    }
+    if (program < 0) _exit(127);
+    // The program's end is the watcher's: boxpile reads the program's exit status from it.
+    int status = 0;
+    while (waitpid(program, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (WIFSIGNALED(status)) {
+      signal(WTERMSIG(status), SIG_DFL);
+      raise(WTERMSIG(status));
+    }
+    _exit(WIFEXITED(status) ? WEXITSTATUS(status) : 127);
   }
   setpgid(pid_, pid_);
   close(in[0]);

@@ -2,8 +2,9 @@
 // output: the one piece behind every outside program boxpile talks to (an engine over
 // docs/engine-protocol.md, a collider of `conform --collider`). It starts the command through
 // /bin/sh in its own process group, writes requests, reads answer lines with a deadline, keeps
-// the tail of the child's standard error when asked, and never lets the child outlive it: the
-// child is killed when boxpile dies (PR_SET_PDEATHSIG), and killed and reaped by the destructor.
+// the tail of the child's standard error when asked, and never lets the child outlive it: a
+// small watcher process leads the group and kills it when boxpile dies (PR_SET_PDEATHSIG), and
+// the destructor kills and reaps it.
 // What a failure means is the caller's: this class reports what happened, it throws nothing
 // about the protocol.
 #pragma once
@@ -62,7 +63,7 @@ class ChildProcess {
   // by "  "; empty when it wrote none. Reads what is waiting in the pipe first.
   std::string stderr_tail();
 
-  // The child's process id (the leader of its process group); -1 once reaped.
+  // The watcher's process id (the leader of the child's process group); -1 once reaped.
   pid_t pid() const { return pid_; }
   const std::string& command() const { return command_; }
 
