@@ -89,6 +89,15 @@ TEST_CASE("our World over the protocol gives the in-process states to the last b
   }
 }
 
+TEST_CASE("an engine's hello alone tells its capabilities before any scene", "[protocol]") {
+  const boxpile::protocol::Hello hello = ProcessEngine::ask_hello("pybox", python_engine(), std::chrono::seconds(20));
+  CHECK(hello.name == "pybox");
+  CHECK(hello.precision == "float64");
+  CHECK(hello.contacts);
+  CHECK(hello.timing);
+  CHECK(hello.settings.empty());
+}
+
 TEST_CASE("the Python example engine falls on the analytic path of semi-implicit Euler", "[protocol]") {
   boxpile::Scene scene = fixture("scenes/free_fall.json");
   ProcessEngine engine(scene, options("pybox", python_engine()));
