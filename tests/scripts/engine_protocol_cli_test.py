@@ -15,7 +15,7 @@ import subprocess
 import sys
 import time
 
-BOXPILE, FIXTURES, EXAMPLES, TESTS, WORK = sys.argv[1:6]
+BOXPILE, FIXTURES, EXAMPLES, TESTS, WORK = (os.path.abspath(a) for a in sys.argv[1:6])
 PYBOX = "pybox=python3 " + os.path.join(EXAMPLES, "engines", "box_engine.py")
 BROKEN = "python3 " + os.path.join(TESTS, "engines", "broken_engine.py")
 STACK = os.path.join(FIXTURES, "scenes", "stack_5.json")
