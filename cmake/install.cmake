@@ -33,7 +33,7 @@ install(TARGETS boxpile RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # Headers keep their folders: P/include/boxpile/{sim,reference,validation}/...
 foreach(folder sim reference validation)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/boxpile/${folder}
-    FILES_MATCHING PATTERN "*.hpp")
+    FILES_MATCHING PATTERN "*.hpp" PATTERN "node_modules" EXCLUDE)
 endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/boxpile.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/boxpile)
 
@@ -44,6 +44,15 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/fixtures DESTINATION ${BOXPILE_DATA_INST
 # The sweep grids, at the same place relative to the fixtures as in the source tree: their scene
 # paths (relative to the grid file) hold, and `boxpile sweep NAME` finds them by name.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/benchmarks/grids DESTINATION ${BOXPILE_DATA_INSTALL_DIR}/benchmarks)
+# The node-hosted engines: their adapters, package.json and the npm packages scripts/install-deps
+# put in reference/node_modules, where the data folder's reference/ has them in the build tree too.
+# OPTIONAL: a tree without them installs a boxpile that lists those engines as unavailable.
+foreach(folder jolt rapier mujoco_wasm node_modules)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/reference/${folder} DESTINATION ${BOXPILE_DATA_INSTALL_DIR}/reference
+    OPTIONAL USE_SOURCE_PERMISSIONS PATTERN "*.cpp" EXCLUDE PATTERN "*.hpp" EXCLUDE PATTERN "CMakeLists.txt" EXCLUDE)
+endforeach()
+install(FILES ${PROJECT_SOURCE_DIR}/reference/package.json ${PROJECT_SOURCE_DIR}/reference/package-lock.json
+  DESTINATION ${BOXPILE_DATA_INSTALL_DIR}/reference OPTIONAL)
 file(GLOB boxpile_validation_folders LIST_DIRECTORIES true ${PROJECT_SOURCE_DIR}/validation/*)
 foreach(dir IN LISTS boxpile_validation_folders)
   file(GLOB_RECURSE assets ${dir}/*.html ${dir}/*.js ${dir}/*.css ${dir}/*.svg ${dir}/*.png)

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,7 +33,7 @@ class Engine {
  public:
   virtual ~Engine() = default;
 
-  // "own", "ode" or "bullet".
+  // "own", "ode", "bullet", or the name of an engine run over the protocol.
   virtual std::string_view name() const = 0;
   // Advances the world by one time step of the scene's dt.
   virtual void step() = 0;
@@ -58,6 +59,10 @@ class Engine {
   // Messages its library reported since the engine was built (ODE's), and the last of them.
   virtual std::uint64_t messages() const { return 0; }
   virtual std::string last_message() const { return {}; }
+  // The time the engine measured itself inside its steps so far (s), for an engine run in
+  // another process that reports it (docs/engine-protocol.md: `engine_seconds`), so that the
+  // protocol's cost is not counted as the engine's; empty when it reports none.
+  virtual std::optional<double> reported_seconds() const { return std::nullopt; }
 };
 
 }  // namespace boxpile

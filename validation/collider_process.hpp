@@ -3,11 +3,10 @@
 #pragma once
 
 #include <chrono>
-#include <optional>
 #include <stdexcept>
 #include <string>
-#include <sys/types.h>
 
+#include "boxpile/reference/process/child_process.hpp"
 #include "boxpile/sim/io/query_loader.hpp"
 
 namespace boxpile {
@@ -31,20 +30,10 @@ class ColliderProcess {
   Manifold ask(const ContactQuery& query);
 
  private:
-  void send(const std::string& line, const ContactQuery& query);
-  std::string receive_line(const ContactQuery& query);
   [[noreturn]] void fail(const std::string& what);
-  // Waits up to `grace` for the collider to exit: its wait status when it did (it is then reaped).
-  std::optional<int> wait_exit(std::chrono::milliseconds grace);
-  void stop();
 
-  std::string command_;
+  ChildProcess child_;
   std::chrono::milliseconds timeout_;
-  pid_t pid_ = -1;
-  int to_child_ = -1;
-  int from_child_ = -1;
-  std::string buffer_;  // output read past the last full line
-  int lines_read_ = 0;  // output lines so far (the next answer is line lines_read_ + 1)
 };
 
 }  // namespace boxpile

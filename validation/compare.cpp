@@ -169,7 +169,7 @@ EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettin
 
   run.steps = loop.steps;
   run.wall_seconds = loop.wall_seconds;
-  run.us_per_step = loop.steps > 0 ? 1e6 * run.wall_seconds / static_cast<double>(loop.steps) : 0.0;
+  run.us_per_step = loop.steps > 0 ? 1e6 * loop.engine_seconds / static_cast<double>(loop.steps) : 0.0;
   run.final_states = loop.final_states;
   run.final_t = loop.final_t;
   run.finite = !loop.stopped;

@@ -26,6 +26,7 @@ RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const 
   call(hooks.frame, 0);
 
   Clock::duration stepping{};
+  const std::optional<double> reported_at_start = engine.reported_seconds();
   for (long k = 1; k <= steps; ++k) {
     std::swap(before, states);
     const Clock::time_point start = Clock::now();
@@ -49,6 +50,8 @@ RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const 
     }
   }
   result.wall_seconds = std::chrono::duration<double>(stepping).count();
+  const std::optional<double> reported = engine.reported_seconds();
+  result.engine_seconds = reported ? *reported - reported_at_start.value_or(0.0) : result.wall_seconds;
   result.final_states = std::move(states);
   result.final_t = static_cast<double>(result.steps) * dt;
   return result;

@@ -40,6 +40,9 @@ struct RunHooks {
 struct RunLoopResult {
   long steps = 0;  // steps taken (fewer than asked when stopped)
   double wall_seconds = 0.0;  // in Engine::step() alone
+  // The engine's own time for these steps when it reports one (an engine over the protocol:
+  // Engine::reported_seconds()), else wall_seconds: the figure per-step costs are made of.
+  double engine_seconds = 0.0;
   std::optional<NonFiniteStop> stopped;
   std::vector<BodyState> final_states;  // the last finite states
   double final_t = 0.0;  // s

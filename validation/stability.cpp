@@ -62,7 +62,7 @@ StabilityCell run_stability_cell(const Scene& scene, std::string_view engine_nam
   const RunLoopResult loop = run_loop(*engine, scene.time.dt, steps, every, hooks);
   cell.steps = loop.steps;
   cell.wall_seconds = loop.wall_seconds;
-  cell.us_per_step = cell.steps > 0 ? 1e6 * cell.wall_seconds / static_cast<double>(cell.steps) : 0.0;
+  cell.us_per_step = cell.steps > 0 ? 1e6 * loop.engine_seconds / static_cast<double>(cell.steps) : 0.0;
   if (loop.stopped) monitor.stopped_non_finite();
   cell.measures = monitor.measures();
   cell.checks = monitor.evaluate();

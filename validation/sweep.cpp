@@ -66,7 +66,7 @@ class ConvergenceMeter {
   double after_shock_ = 0.0, shock_passes_ = 0.0;
 };
 
-// One run of the cell: the seconds spent in Engine::step() alone. The measured run (given a
+// One run of the cell: the seconds spent in Engine::step() alone (the engine's own, when it reports them). The measured run (given a
 // monitor) feeds the catalogue's monitor every state, and our solver's statistics to `meter`
 // when given; reading them is outside the timed steps.
 double cell_run(const EngineConfig& config, const std::string& engine, long steps, RunMonitor* monitor,
@@ -83,7 +83,7 @@ double cell_run(const EngineConfig& config, const std::string& engine, long step
   }
   const RunLoopResult loop = run_loop(*e, config.scene.time.dt, steps, steps, hooks);
   if (monitor && loop.stopped) monitor->stopped_non_finite();
-  return loop.wall_seconds;
+  return loop.engine_seconds;
 }
 
 std::string first_line_with(const std::string& file, const std::string& prefix) {

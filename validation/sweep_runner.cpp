@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "boxpile/reference/process/process_engine.hpp"
 #include "boxpile/validation/json_output.hpp"
 #include "boxpile/validation/report_directory.hpp"
 
@@ -29,6 +30,10 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 
 fs::path cell_file(const fs::path& dir, int index) { return dir / ("cell-" + std::to_string(index) + ".json"); }
 
+// A worker's exit status when an engine over the protocol broke it: the sweep then fails as bad
+// input (exit 2), as it does without workers.
+constexpr int kWorkerEngineBroke = 2;
+
 // The body of worker `w`: its cells, each written as soon as it is done. Never returns.
 [[noreturn]] void worker(const SweepGrid& grid, const std::vector<CellSpec>& cells, int w, int jobs, const fs::path& dir) {
   // The parent's handlers (which only set a flag) must not keep a worker alive when it is stopped.
@@ -41,6 +46,9 @@ fs::path cell_file(const fs::path& dir, int index) { return dir / ("cell-" + std
       r.jobs = jobs;
       write_report_file(cell_file(dir, cells[k].index), cell_json(r).dump(2) + "\n");
     }
+  } catch (const EngineProtocolError& e) {
+    std::cerr << "boxpile: worker " << w + 1 << ": " << e.what() << '\n';
+    code = kWorkerEngineBroke;
   } catch (const std::exception& e) {
     std::cerr << "boxpile: worker " << w + 1 << ": " << e.what() << '\n';
     code = 1;
@@ -86,7 +94,7 @@ std::vector<CellResult> run_parallel(const SweepGrid& grid, const std::vector<Ce
     pids.push_back(pid);
   }
   int running = static_cast<int>(pids.size()), reported = -1;
-  bool failed = false;
+  bool failed = false, engine_broke = false;
   try {
     while (running > 0) {
       for (pid_t& p : pids) {
@@ -94,6 +102,7 @@ std::vector<CellResult> run_parallel(const SweepGrid& grid, const std::vector<Ce
         int status = 0;
         if (waitpid(p, &status, WNOHANG) == p) {
           failed = failed || !WIFEXITED(status) || WEXITSTATUS(status) != 0;
+          engine_broke = engine_broke || (WIFEXITED(status) && WEXITSTATUS(status) == kWorkerEngineBroke);
           p = 0;
           --running;
         }
@@ -109,6 +118,7 @@ std::vector<CellResult> run_parallel(const SweepGrid& grid, const std::vector<Ce
     stop_workers(pids);
     throw;
   }
+  if (engine_broke) throw EngineProtocolError("an engine over the protocol broke in a worker process (its message is above)");
   if (failed) throw std::runtime_error("a worker process failed (its message is above)");
   std::vector<CellResult> results;
   for (const CellSpec& c : cells) {

@@ -5,6 +5,9 @@
 #include "boxpile/reference/ode/ode_engine.hpp"
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/engine_command_options.hpp"
+#include "boxpile/reference/process/process_engine.hpp"
+#include "boxpile/validation/process_engines.hpp"
 #include "boxpile/validation/collider_process.hpp"
 #include "boxpile/validation/detectors.hpp"
 #include "boxpile/reference/registry.hpp"
@@ -13,19 +16,22 @@
 
 namespace {
 
-// Errors of the user's input (a file, a name, a flag, an output path, a collider, a scene outside
-// what ODE can take): exit 2; anything else 1.
+// Errors of the user's input (a file, a name, a flag, an output path, a collider, an engine that
+// breaks docs/engine-protocol.md, a scene outside what ODE can take): exit 2; anything else 1.
 bool is_bad_input(const std::exception& e) {
   return dynamic_cast<const boxpile::InputError*>(&e) || dynamic_cast<const boxpile::UnknownEngine*>(&e) ||
          dynamic_cast<const boxpile::UnknownDetector*>(&e) || dynamic_cast<const boxpile::ColliderError*>(&e) ||
          dynamic_cast<const boxpile::OutputError*>(&e) || dynamic_cast<const boxpile::cli::UsageError*>(&e) ||
-         dynamic_cast<const boxpile::OdeError*>(&e);
+         dynamic_cast<const boxpile::OdeError*>(&e) || dynamic_cast<const boxpile::EngineProtocolError*>(&e) ||
+         dynamic_cast<const boxpile::EngineCommandError*>(&e);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace boxpile::cli;
+  // The node-hosted engines join the registry before any help text or engine list is made.
+  boxpile::add_node_engines();
   CLI::App app{"boxpile: a pile of boxes in our own simulator, checked against ODE and Bullet"};
   app.set_version_flag("--version", std::string("boxpile ") + BOXPILE_VERSION);
   // No command runs the main job: compare on the default scene (the bone and the pile).
@@ -48,6 +54,11 @@ int main(int argc, char** argv) {
   add_conform_command(app, conform);
   ViewOptions view;
   add_view_command(app, view);
+  // The commands that run engines take engines over the protocol too.
+  EngineCommandOptions engine_commands;
+  for (const char* name : {"run", "compare", "stability", "sweep"}) {
+    add_engine_command_options(*app.get_subcommand(name), engine_commands);
+  }
 
   try {
     app.parse(argc, argv);
@@ -61,6 +72,7 @@ int main(int argc, char** argv) {
   }
 
   try {
+    apply_engine_command_options(engine_commands);
     if (app.got_subcommand("contacts")) return run_contacts(contacts);
     if (app.got_subcommand("run")) return run_run(run);
     if (app.got_subcommand("compare")) return run_compare_command(compare);
