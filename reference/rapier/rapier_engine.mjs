@@ -3,7 +3,7 @@
 import RAPIER from '@dimforge/rapier3d-compat';
 import { serve } from '../protocol/engine_server.mjs';
 import { readScene, pairMaterial, wireGeometry, withoutDuplicates } from '../protocol/scene.mjs';
-import { add, sub, scale, dot, quatRotate, matrixToQuat, symmetricEigen } from '../protocol/math.mjs';
+import { add, sub, scale, dot, cross, quatRotate, matrixToQuat, symmetricEigen } from '../protocol/math.mjs';
 
 const PACKAGE_VERSION = '0.21.0';
 
@@ -13,9 +13,6 @@ const PACKAGE_VERSION = '0.21.0';
 const kGroundHalfThickness = 2; // m
 const kGroundHalfWidth = 1000; // m
 
-// A wire is a multibody chain world -> prismatic -> carriage -> spherical -> body. The carriage
-// has no collider; its mass, this fraction of the body's, adds to the body's along the wire.
-const kCarriageMassRatio = 1e-4;
 
 // Rapier's default contact spring (IntegrationParameters::contact_natural_frequency, Hz): the JS
 // API can set it but not read it back; load checks the value through contact_erp.
@@ -124,25 +121,26 @@ class RapierEngine {
       const collider = this.world.createCollider(this.colliderMaterial(c, body.material), rigid);
       this.colliderBody.set(collider.handle, index);
     }
-    if (body.wire) this.addWire(body, rigid, settings);
+    if (body.wire) this.addWire(body, rigid);
     return rigid;
   }
 
-  addWire(body, rigid, settings) {
+  // The anchor held on the wire's line by a generic joint locking the two directions across it
+  // (in the fixed root's frame, whose x axis is the wire), and kept between the ends by two rope
+  // joints of the wire's length, one from each end.
+  addWire(body, rigid) {
     const wire = wireGeometry(body);
-    const root = this.world.createRigidBody(RAPIER.RigidBodyDesc.fixed().setTranslation(...body.wire.from));
-    const carriageMass = body.mass * kCarriageMassRatio;
-    const carriageInertia = carriageMass * 1e-2; // kg m^2: a 0.1 m ball's order; it never turns
-    const carriage = this.world.createRigidBody(RAPIER.RigidBodyDesc.dynamic()
-      .setTranslation(...wire.anchorWorld)
-      .setAdditionalMassProperties(carriageMass, vec([0, 0, 0]), vec([carriageInertia, carriageInertia, carriageInertia]), rot([1, 0, 0, 0]))
-      .setCanSleep(settings.can_sleep));
-    const slide = RAPIER.JointData.prismatic(vec(scale(wire.axis, wire.s0)), vec([0, 0, 0]), vec(wire.axis));
-    slide.limitsEnabled = true;
-    slide.limits = [-wire.s0, wire.length - wire.s0];
-    this.world.createMultibodyJoint(slide, root, carriage, true);
-    const ball = RAPIER.JointData.spherical(vec([0, 0, 0]), vec(body.wire.anchor));
-    this.world.createMultibodyJoint(ball, carriage, rigid, true);
+    const frame = rotationFromX(wire.axis);
+    const root = this.world.createRigidBody(RAPIER.RigidBodyDesc.fixed()
+      .setTranslation(...body.wire.from).setRotation(rot(frame)));
+    const anchorOnRoot = vec([wire.s0, 0, 0]);
+    const lineMask = RAPIER.JointAxesMask.LinY | RAPIER.JointAxesMask.LinZ;
+    const line = RAPIER.JointData.generic(anchorOnRoot, vec(body.wire.anchor), vec([1, 0, 0]), lineMask);
+    this.world.createImpulseJoint(line, root, rigid, true);
+    for (const end of [0, wire.length]) {
+      const rope = RAPIER.JointData.rope(wire.length, vec([end, 0, 0]), vec(body.wire.anchor));
+      this.world.createImpulseJoint(rope, root, rigid, true);
+    }
   }
 
   step(n) {
@@ -216,6 +214,15 @@ class RapierEngine {
 
 function toWorld(collider, local) {
   return add(arr(collider.translation()), quatRotate(quatArr(collider.rotation()), local));
+}
+
+// The rotation taking +x to the unit vector n (the shortest arc).
+function rotationFromX(n) {
+  const c = n[0];
+  if (c < -1 + 1e-12) return [0, 0, 0, 1];
+  const q = [1 + c, 0, -n[2], n[1]]; // w = 1 + x . n, axis x cross n
+  const len = Math.hypot(...q);
+  return q.map((v) => v / len);
 }
 
 // The rotation taking +z to the unit vector n (the shortest arc).

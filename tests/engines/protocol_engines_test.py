@@ -1,0 +1,333 @@
+#!/usr/bin/env python3
+"""Drives one node adapter of reference/ (docs/engine-protocol.md) directly over its pipes and
+checks its conventions against analytic results: hello's fields, a resting box's contacts, free
+flight (the integrator's discrete path), the centre of mass and angular velocity conventions, the
+pair friction law, damping, a wire, a stack of 5, bad input answered with ok: false, and exit at
+end of input.
+
+usage: protocol_engines_test.py ENGINE REFERENCE_DIR   (ENGINE: jolt, rapier, mujoco-wasm)
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+DT = 1 / 240
+G = 9.81
+
+# What each engine gives by design, measured on this machine (docs/reference-engines.md).
+# rest_depth: the deepest a resting unit box may sink into the ground (m), and its shallowest;
+# stack_top: [low, high] of the top box's centre of a stack of 5 unit boxes after 5 s (m);
+# fall_tol: how far the free-fall path may stray from the discrete (semi-implicit Euler) one,
+# which is the float32 rounding of ~1 m positions over 240 steps, or float64's;
+# substeps: semi-implicit Euler substeps per step (Rapier's solver takes num_solver_iterations
+# substeps of dt / 4 each step, velocity then position);
+# com_tol: how far the frame of a spinning body with an offset centre of mass may stray (MuJoCo
+# integrates the free joint at the body's origin, holding the origin's velocity over a step while
+# it circles the centre of mass: first order in dt, r w^2 dt t / 2 = 4.2e-4 m in that test, and it
+# halves with dt; the others integrate the centre of mass).
+ENGINES = {
+    'jolt': {
+        'script': 'jolt/jolt_engine.mjs', 'precision': 'float32',
+        'rest_depth': (0.0, 1e-6),     # Jolt starts at exact touch and holds it (no soft contact)
+        'stack_top': (4.4995, 4.5001),
+        'fall_tol': 2e-5, 'substeps': 1, 'com_tol': 1e-4,
+    },
+    'rapier': {
+        'script': 'rapier/rapier_engine.mjs', 'precision': 'float32',
+        'rest_depth': (1e-5, 2e-4),    # Rapier's soft contacts settle slightly inside
+        'stack_top': (4.490, 4.499),
+        'fall_tol': 2e-5, 'substeps': 4, 'com_tol': 1e-4,
+    },
+    'mujoco-wasm': {
+        'script': 'mujoco_wasm/mujoco_wasm_engine.mjs', 'precision': 'float64',
+        'rest_depth': (1e-6, 1e-4),    # soft contacts (solref/solimp) sink by design
+        'stack_top': (4.497, 4.5),
+        'fall_tol': 1e-9, 'substeps': 1, 'com_tol': 5e-4,
+    },
+}
+
+failures = []
+
+
+def check(ok, what):
+    print(('ok    ' if ok else 'FAIL  ') + what, flush=True)
+    if not ok:
+        failures.append(what)
+
+
+class Adapter:
+    def __init__(self, script, reference):
+        self.proc = subprocess.Popen(['node', os.path.join(reference, script)], stdin=subprocess.PIPE,
+                                     stdout=subprocess.PIPE, text=True, cwd=reference)
+
+    def ask(self, message):
+        self.proc.stdin.write(json.dumps(message) + '\n')
+        self.proc.stdin.flush()
+        line = self.proc.stdout.readline()
+        if not line:
+            raise RuntimeError(f'the adapter closed its output after {message["op"]}')
+        return json.loads(line)
+
+    def close(self):
+        self.proc.stdin.close()
+        try:
+            return self.proc.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            return None
+
+
+def unit_box(name, z, x=0.0, friction=0.5, restitution=0.0, mass=1.0, com=(0, 0, 0)):
+    i = mass / 6
+    return {'name': name, 'fixed': False, 'mass': mass, 'center_of_mass': list(com),
+            'inertia': [[i, 0, 0], [0, i, 0], [0, 0, i]], 'position': [x, 0, z],
+            'orientation': [1, 0, 0, 0], 'velocity': [0, 0, 0], 'angular_velocity': [0, 0, 0],
+            'friction': friction, 'restitution': restitution,
+            'boxes': [{'half_extents': [0.5, 0.5, 0.5], 'position': [0, 0, 0], 'orientation': [1, 0, 0, 0]}]}
+
+
+def make_scene(bodies, ground=True, gravity=-G, ground_friction=0.5, damping=None):
+    return {'name': 'test', 'dt': DT, 'gravity': [0, 0, gravity],
+            'ground': {'normal': [0, 0, 1], 'offset': 0} if ground else None,
+            'effects': {'friction': True, 'restitution': True, 'damping': damping is not None, 'gyroscopic': True},
+            'damping': {'linear': damping or 0, 'angular': damping or 0},
+            'bodies': bodies, 'ground_material': {'friction': ground_friction, 'restitution': 0}}
+
+
+_shared = {}
+
+
+def run(adapter, scene, steps, settings=None):
+    """Loads the scene and steps it; the answer. One adapter process serves every scene of the
+    test (each load replaces the world), so that the WebAssembly module is compiled once."""
+    a = _shared.get(adapter['script'])
+    if a is None:
+        a = _shared[adapter['script']] = Adapter(adapter['script'], REFERENCE)
+        a.ask({'op': 'hello', 'protocol': 1})
+    loaded = a.ask({'op': 'load', 'settings': settings or {}, 'scene': scene})
+    if not loaded.get('ok'):
+        raise RuntimeError(f'load failed: {loaded}')
+    reply = a.ask({'op': 'step', 'n': steps, 'state': True, 'contacts': True})
+    if not reply.get('ok'):
+        raise RuntimeError(f'step failed: {reply}')
+    return reply
+
+
+def test_hello(engine, adapter):
+    a = Adapter(adapter['script'], REFERENCE)
+    h = a.ask({'op': 'hello', 'protocol': 1})
+    check(h.get('ok') is True and h.get('protocol') == 1, 'hello: ok, protocol 1')
+    check(h.get('name') == engine, f'hello: name {h.get("name")!r} is {engine!r}')
+    check(h.get('precision') == adapter['precision'], f'hello: precision {h.get("precision")} is {adapter["precision"]}')
+    check(h.get('contacts') is True and h.get('timing') is True, 'hello: contacts and timing announced')
+    check(isinstance(h.get('version'), str) and 'node' in h['version'], f'hello: version {h.get("version")!r}')
+    settings = h.get('settings', [])
+    check(len(settings) >= 5, f'hello: {len(settings)} settings')
+    for s in settings:
+        kind, default = s.get('kind'), s.get('default')
+        good = isinstance(s.get('what'), str) and s['what'] and 'unit' in s
+        if kind in ('integer', 'number'):
+            good = good and s['min'] <= default <= s['max'] and (kind == 'number' or isinstance(default, int))
+        elif kind == 'choice':
+            good = good and default in s.get('choices', [])
+        elif kind == 'boolean':
+            good = good and isinstance(default, bool)
+        else:
+            good = False
+        check(good, f'hello: setting {s.get("key")} ({kind}, default {default}) well formed')
+    # Loading every default explicitly is accepted.
+    r = a.ask({'op': 'load', 'settings': {s['key']: s['default'] for s in settings}, 'scene': make_scene([unit_box('b', 0.5)])})
+    check(r == {'ok': True}, f'load with every default given: {r}')
+    check(a.close() == 0, 'exits with status 0 at end of input')
+    return settings
+
+
+def test_resting_box(adapter):
+    r = run(adapter, make_scene([unit_box('box', 0.5)]), 240)
+    contacts = r['contacts']
+    check(len(contacts) == 4, f'resting box: {len(contacts)} contacts (4: its bottom corners)')
+    lo, hi = adapter['rest_depth']
+    corners = {(sx * 0.5, sy * 0.5) for sx in (-1, 1) for sy in (-1, 1)}
+    for c in contacts:
+        check(c['a'] == 0 and c['b'] == -1, f'resting box: contact between a={c["a"]} and b={c["b"]} (0, -1)')
+        check(all(abs(n - e) < 1e-6 for n, e in zip(c['normal'], (0, 0, 1))), f'resting box: normal {c["normal"]} is (0, 0, 1), from the ground toward the box')
+        check(lo <= c['depth'] <= hi, f'resting box: depth {c["depth"]:.3g} in [{lo}, {hi}]')
+        near = min(corners, key=lambda k: math.hypot(c['position'][0] - k[0], c['position'][1] - k[1]))
+        check(math.hypot(c['position'][0] - near[0], c['position'][1] - near[1]) < 1e-4 and abs(c['position'][2] + c['depth'] / 2) < 1e-5,
+              f'resting box: contact at {c["position"]} is a bottom corner, the midpoint of the overlap')
+    z = r['bodies'][0]['position'][2]
+    check(0.5 - hi - 1e-6 <= z <= 0.5 + 1e-6, f'resting box: centre at z = {z:.7f}')
+    check(0 < r['engine_seconds'] < 10, f'engine_seconds {r["engine_seconds"]:.3g} s for 240 steps')
+
+
+def test_free_fall(adapter):
+    """No ground: semi-implicit Euler with s substeps of h = dt / s gives after N = n s substeps
+    v = v0 + g N h, x = x0 + v0 N h + g h^2 N (N + 1) / 2."""
+    box = unit_box('box', 10)
+    box['velocity'] = [1.0, 0, 2.0]
+    n = 240
+    r = run(adapter, make_scene([box], ground=False), n)
+    b = r['bodies'][0]
+    h, N = DT / adapter['substeps'], n * adapter['substeps']
+    x = [1.0 * n * DT, 0, 10 + 2.0 * n * DT - G * h * h * N * (N + 1) / 2]
+    v = [1.0, 0, 2.0 - G * n * DT]
+    err = max(abs(p - e) for p, e in zip(b['position'], x))
+    check(err < adapter['fall_tol'], f'free fall: position off the discrete path by {err:.2g} m (< {adapter["fall_tol"]})')
+    verr = max(abs(p - e) for p, e in zip(b['velocity'], v))
+    check(verr < adapter['fall_tol'] * 10, f'free fall: velocity off by {verr:.2g} m/s')
+    check(abs(r['time'] - n * DT) < 1e-9, f'time {r["time"]} is {n * DT}')
+
+
+def test_offset_centre_of_mass(adapter):
+    """Zero gravity, centre of mass 0.2 m off the frame's origin, spinning about z at 1 rad/s while
+    it drifts: the centre of mass moves in a straight line, the frame circles it."""
+    box = unit_box('box', 5, com=(0.2, 0, 0))
+    box['velocity'] = [0.5, 0, 0]
+    box['angular_velocity'] = [0, 0, 1.0]
+    n = 240
+    r = run(adapter, make_scene([box], ground=False, gravity=0), n)
+    b = r['bodies'][0]
+    t = n * DT
+    com = [0.2 + 0.5 * t, 0, 5]
+    angle = 1.0 * t
+    frame = [com[0] - 0.2 * math.cos(angle), -0.2 * math.sin(angle), 5]
+    err = max(abs(p - e) for p, e in zip(b['position'], frame))
+    tol = adapter['com_tol']
+    check(err < tol, f'offset centre of mass: body frame at {b["position"]}, expected {frame} (off {err:.2g} m)')
+    verr = max(abs(p - e) for p, e in zip(b['velocity'], [0.5, 0, 0]))
+    check(verr < tol, f'offset centre of mass: reported velocity {b["velocity"]} is the centre of mass\'s (0.5, 0, 0)')
+    werr = max(abs(p - e) for p, e in zip(b['angular_velocity'], [0, 0, 1]))
+    check(werr < 1e-4, f'offset centre of mass: angular velocity {b["angular_velocity"]} (0, 0, 1)')
+    q = b['orientation']
+    qe = [math.cos(angle / 2), 0, 0, math.sin(angle / 2)]
+    qerr = min(max(abs(p - e) for p, e in zip(q, qe)), max(abs(p + e) for p, e in zip(q, qe)))
+    check(qerr < 1e-4, f'offset centre of mass: orientation {q} is [w, x, y, z] = {qe}')
+
+
+def test_friction_law(adapter):
+    """A box sliding at 2 m/s on the ground: box friction 0.25, ground 1, so the pair's
+    mu = sqrt(0.25 * 1) = 0.5 and it stops after v^2 / (2 mu g) = 0.408 m (max would give
+    0.204 m, the mean 0.326 m)."""
+    box = unit_box('box', 0.5, friction=0.25)
+    box['velocity'] = [2.0, 0, 0]
+    r = run(adapter, make_scene([box], ground_friction=1.0), 240)
+    x = r['bodies'][0]['position'][0]
+    expected = 2.0 ** 2 / (2 * 0.5 * G)
+    check(abs(x - expected) < 0.03 * expected, f'friction sqrt(mu_a mu_b): slid {x:.4f} m, expected {expected:.4f} m (3 %)')
+
+
+def test_damping(adapter):
+    """Zero gravity, damping 0.5/s on a box moving at 1 m/s: after 1 s, exp(-0.5) = 0.607 m/s
+    to first order in dt (each engine's discrete factor differs from it by about c^2 dt / 2)."""
+    box = unit_box('box', 5)
+    box['velocity'] = [1.0, 0, 0]
+    box['angular_velocity'] = [0, 0, 1.0]
+    r = run(adapter, make_scene([box], ground=False, gravity=0, damping=0.5), 240)
+    b = r['bodies'][0]
+    expected = math.exp(-0.5)
+    check(abs(b['velocity'][0] - expected) < 2e-3, f'damping: velocity {b["velocity"][0]:.5f} m/s, expected {expected:.5f}')
+    check(abs(b['angular_velocity'][2] - expected) < 2e-3, f'damping: angular velocity {b["angular_velocity"][2]:.5f} rad/s, expected {expected:.5f}')
+
+
+def test_wire(adapter):
+    """A box hangs from a horizontal wire 2 m long by the middle of its top face, pushed at
+    1.5 m/s along it from the middle: frictionless, it reaches the end (1 m) after 0.67 s and stops
+    there; its anchor never leaves the wire."""
+    box = unit_box('box', 1.5)
+    box['velocity'] = [1.5, 0, 0]
+    box['wire'] = {'from': [-1, 0, 2], 'to': [1, 0, 2], 'anchor': [0, 0, 0.5]}
+    r = run(adapter, make_scene([box], ground=False), 240)
+    b = r['bodies'][0]
+    w, x, y, z = b['orientation']
+    # the anchor (0, 0, 0.5) in the world: position + R anchor (R's third column times 0.5)
+    anchor = [b['position'][0] + 0.5 * (2 * (x * z + w * y)),
+              b['position'][1] + 0.5 * (2 * (y * z - w * x)),
+              b['position'][2] + 0.5 * (1 - 2 * (x * x + y * y))]
+    check(abs(anchor[1]) < 1e-3 and abs(anchor[2] - 2) < 1e-3, f'wire: anchor {anchor} stays on the wire (y 0, z 2)')
+    check(abs(anchor[0] - 1) < 0.01, f'wire: anchor stopped at the end x = 1 (at {anchor[0]:.4f})')
+
+
+def test_stack(adapter):
+    """Five unit boxes stacked exactly, 5 s: each engine settles where its contact model puts it."""
+    r = run(adapter, make_scene([unit_box(f'box{i}', 0.5 + i) for i in range(5)]), 1200)
+    top = r['bodies'][4]['position']
+    lo, hi = adapter['stack_top']
+    check(lo <= top[2] <= hi, f'stack of 5: top at z = {top[2]:.6f} in [{lo}, {hi}]')
+    drift = math.hypot(top[0], top[1])
+    check(drift < 0.01, f'stack of 5: top drifted {drift:.2g} m sideways')
+    pairs = {(c['a'], c['b']) for c in r['contacts']}
+    check(pairs == {(0, -1), (1, 0), (2, 1), (3, 2), (4, 3)} or pairs == {(0, -1), (0, 1), (1, 2), (2, 3), (3, 4)},
+          f'stack of 5: touching pairs {sorted(pairs)}')
+    check(len(r['contacts']) == 20, f'stack of 5: {len(r["contacts"])} contacts (4 per interface)')
+    for c in r['contacts']:
+        if c['b'] >= 0:
+            upper = max(c['a'], c['b'])
+            sign = 1 if c['a'] == upper else -1
+            check(abs(c['normal'][2] - sign) < 1e-4, f'stack of 5: normal {c["normal"]} points from b={c["b"]} toward a={c["a"]}')
+            break
+
+
+def test_bad_input(adapter, settings):
+    a = Adapter(adapter['script'], REFERENCE)
+    check(a.ask({'op': 'hello', 'protocol': 2}).get('ok') is False, 'hello with protocol 2: ok false')
+    r = a.ask({'op': 'step', 'n': 1})
+    check(r.get('ok') is False and 'load' in r.get('error', ''), f'step before load: {r}')
+    numeric = next(s for s in settings if s['kind'] == 'integer')
+    r = a.ask({'op': 'load', 'settings': {numeric['key']: numeric['max'] + 1}, 'scene': make_scene([unit_box('b', 0.5)])})
+    check(r.get('ok') is False and numeric['key'] in r.get('error', ''), f'{numeric["key"]} above its max: {r}')
+    r = a.ask({'op': 'load', 'settings': {'no_such_setting': 1}, 'scene': make_scene([unit_box('b', 0.5)])})
+    check(r.get('ok') is False and 'no_such_setting' in r.get('error', ''), f'unknown setting: {r}')
+    bad = make_scene([unit_box('b', 0.5)])
+    bad['bodies'][0]['mass'] = -1
+    r = a.ask({'op': 'load', 'scene': bad})
+    check(r.get('ok') is False and 'bodies[0].mass' in r.get('error', ''), f'negative mass: {r}')
+    r = a.ask({'op': 'frobnicate'})
+    check(r.get('ok') is False, f'unknown op: {r}')
+    a.proc.stdin.write('this is not json\n')
+    a.proc.stdin.flush()
+    r = json.loads(a.proc.stdout.readline())
+    check(r.get('ok') is False, f'a line that is not JSON: {r}')
+    r = a.ask({'op': 'load', 'scene': make_scene([unit_box('b', 0.5)])})
+    check(r == {'ok': True}, f'still serving after errors: {r}')
+    r = a.ask({'op': 'step', 'n': 0})
+    check(r.get('ok') is False, f'step n = 0: {r}')
+    r = a.ask({'op': 'quit'})
+    check(r == {'ok': True}, 'quit answers ok')
+    try:
+        status = a.proc.wait(timeout=20)
+    except subprocess.TimeoutExpired:
+        a.proc.kill()
+        status = None
+    check(status == 0, f'quit exits with status 0 ({status})')
+
+
+def main():
+    global REFERENCE
+    if len(sys.argv) != 3 or sys.argv[1] not in ENGINES:
+        sys.exit(__doc__)
+    engine, REFERENCE = sys.argv[1], os.path.abspath(sys.argv[2])
+    if not os.path.isdir(os.path.join(REFERENCE, 'node_modules')):
+        print(f'{REFERENCE}/node_modules is missing: run scripts/install-deps (npm ci in reference/)')
+        sys.exit(1)
+    adapter = ENGINES[engine]
+    start = time.time()
+    settings = test_hello(engine, adapter)
+    test_resting_box(adapter)
+    test_free_fall(adapter)
+    test_offset_centre_of_mass(adapter)
+    test_friction_law(adapter)
+    test_damping(adapter)
+    test_wire(adapter)
+    test_stack(adapter)
+    test_bad_input(adapter, settings)
+    for a in _shared.values():
+        check(a.close() == 0, 'the shared adapter exits with status 0 at end of input')
+    print(f'{engine}: {len(failures)} failures, {time.time() - start:.1f} s')
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == '__main__':
+    main()
