@@ -1,5 +1,5 @@
 // Jolt Physics (npm jolt-physics 1.1.0, WebAssembly, float32) as a protocol engine.
-// See README.md beside this file and docs/reference-engines.md for what maps and what cannot.
+// docs/reference-engines.md says how each scene field maps and what cannot be matched.
 import initJolt from 'jolt-physics';
 import { serve } from '../protocol/engine_server.mjs';
 import { readScene, pairMaterial, wireGeometry, withoutDuplicates, SceneError } from '../protocol/scene.mjs';

@@ -1,11 +1,11 @@
 // MuJoCo 3.14 (npm @mujoco/mujoco, the official WebAssembly build, float64) as a protocol engine:
-// the resolved scene becomes an MJCF model, stepped with mj_step. See README.md beside this file
-// and docs/reference-engines.md for what maps and what cannot.
+// the resolved scene becomes an MJCF model, stepped with mj_step. See docs/reference-engines.md
+// for what maps and what cannot.
 import loadMujoco from '@mujoco/mujoco';
 import { serve } from '../protocol/engine_server.mjs';
 import { readScene, pairMaterial, wireGeometry, SceneError } from '../protocol/scene.mjs';
 import {
-  sub, scale, cross, quatConjugate, quatRotate, quatToMatrix, matVec, matMul, transpose,
+  add, sub, scale, cross, quatConjugate, quatRotate, quatToMatrix, matVec, matMul, transpose,
 } from '../protocol/math.mjs';
 
 const PACKAGE_VERSION = '3.14.0';
@@ -52,6 +52,9 @@ export function dampRatioForRestitution(e, dampratio) {
   const l = Math.log(e);
   return -l / Math.sqrt(Math.PI * Math.PI + l * l);
 }
+
+// Damping and the removal of the gyroscopic term are forces the adapter applies each step.
+const needsBodyForces = (scene) => scene.effects.damping || !scene.effects.gyroscopic;
 
 const fmt = (v) => (Array.isArray(v) ? v.map((x) => String(x)).join(' ') : String(v));
 
@@ -187,8 +190,8 @@ class MujocoEngine {
   load(sceneJson, settings) {
     this.release();
     const scene = readScene(sceneJson);
-    if (scene.effects.damping && settings.integrator === 'RK4')
-      throw new SceneError('the scene asks for damping, applied between mj_step1 and mj_step2, which RK4 cannot split: choose another integrator');
+    if (needsBodyForces(scene) && settings.integrator === 'RK4')
+      throw new SceneError('the scene asks for damping or turns the gyroscopic term off, both applied between mj_step1 and mj_step2, which RK4 cannot split: choose another integrator');
     const { xml, geomBody } = sceneToMjcf(scene, settings);
     this.scene = scene;
     this.geomBody = geomBody;
@@ -231,17 +234,23 @@ class MujocoEngine {
     }
   }
 
-  // dP = -c_lin P dt, dL = -c_ang L dt as forces at the centres of mass (xfrc_applied), from the
-  // velocities mj_step1 has just computed.
-  applyDamping() {
-    const { linear, angular } = this.scene.damping;
+  // Forces at the centres of mass (xfrc_applied), from the velocities mj_step1 has just computed:
+  // damping dP = -c_lin P dt, dL = -c_ang L dt; and, with the gyroscopic effect off, the torque
+  // w x (I w) that cancels MuJoCo's gyroscopic term in I dw/dt + w x (I w) = tau (MuJoCo always
+  // includes it), evaluated at the same state as its own, so that Euler's w stays constant.
+  applyBodyForces() {
+    const { effects, damping } = this.scene;
+    const linear = effects.damping ? damping.linear : 0;
+    const angular = effects.damping ? damping.angular : 0;
     const xfrc = this.data.xfrc_applied;
     this.scene.bodies.forEach((body, i) => {
       if (body.fixed) return;
       const { velocity, angularVelocity } = this.bodyVelocity(i);
       const R = quatToMatrix(this.bodyOrientation(i));
       const Lw = matVec(matMul(matMul(R, body.inertia), transpose(R)), angularVelocity);
-      xfrc.set([...scale(velocity, -linear * body.mass), ...scale(Lw, -angular)], (i + 1) * 6);
+      let torque = scale(Lw, -angular);
+      if (!effects.gyroscopic) torque = add(torque, cross(angularVelocity, Lw));
+      xfrc.set([...scale(velocity, -linear * body.mass), ...torque], (i + 1) * 6);
     });
   }
 
@@ -260,13 +269,13 @@ class MujocoEngine {
 
   step(n) {
     const { mj, model, data } = this;
-    const damping = this.scene.effects.damping;
+    const split = needsBodyForces(this.scene);
     let seconds = 0;
     for (let k = 0; k < n; ++k) {
       const t0 = process.hrtime.bigint();
-      if (damping) {
+      if (split) {
         mj.mj_step1(model, data);
-        this.applyDamping();
+        this.applyBodyForces();
         mj.mj_step2(model, data);
       } else {
         mj.mj_step(model, data);

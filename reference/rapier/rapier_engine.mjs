@@ -1,5 +1,5 @@
 // Rapier (npm @dimforge/rapier3d-compat 0.21.0, WebAssembly, float32) as a protocol engine.
-// See README.md beside this file and docs/reference-engines.md for what maps and what cannot.
+// docs/reference-engines.md says how each scene field maps and what cannot be matched.
 import RAPIER from '@dimforge/rapier3d-compat';
 import { serve } from '../protocol/engine_server.mjs';
 import { readScene, pairMaterial, wireGeometry, withoutDuplicates } from '../protocol/scene.mjs';
@@ -58,6 +58,8 @@ class RapierEngine {
     this.world = null;
     const scene = readScene(sceneJson);
     this.scene = scene;
+    if (!scene.effects.gyroscopic)
+      console.error(`rapier: scene ${scene.name} turns the gyroscopic term off; Rapier always includes it (its JS API has no switch)`);
     const world = new RAPIER.World(vec(scene.gravity));
     world.timestep = scene.dt;
     const p = world.integrationParameters;

@@ -35,7 +35,7 @@ ENGINES = {
         'rest_depth': (0.0, 1e-6),     # Jolt starts at exact touch and holds it (no soft contact)
         'stack_top': (4.4997, 4.5),     # measured 4.499854
         'bounce_e': (0.49, 0.53),       # measured 0.514
-        'fall_tol': 2e-5, 'substeps': 1, 'com_tol': 1e-4,
+        'fall_tol': 2e-5, 'substeps': 1, 'com_tol': 1e-4, 'gyroscopic_switch': True,
     },
     'rapier': {
         'script': 'rapier/rapier_engine.mjs', 'precision': 'float32',
@@ -43,6 +43,7 @@ ENGINES = {
         'stack_top': (4.493, 4.497),    # measured 4.495014: about 1.2 mm per interface
         'bounce_e': (0.46, 0.50),       # measured 0.476
         'fall_tol': 2e-5, 'substeps': 4, 'com_tol': 1e-4,
+        'gyroscopic_switch': False,  # always on: the JS API has no switch (the adapter says so on stderr)
     },
     'mujoco-wasm': {
         'script': 'mujoco_wasm/mujoco_wasm_engine.mjs', 'precision': 'float64',
@@ -52,6 +53,7 @@ ENGINES = {
         # (mujoco_wasm_engine.mjs) gives 0.42 for e = 0.5, MuJoCo's contact spring being nonlinear
         'bounce_e': (0.40, 0.44),
         'fall_tol': 1e-9, 'substeps': 1, 'com_tol': 5e-4,
+        'gyroscopic_switch': True,  # MuJoCo always has the term: the adapter cancels it when off
     },
 }
 
@@ -225,6 +227,41 @@ def test_friction_law(adapter):
     check(abs(x - expected) < 0.03 * expected, f'friction sqrt(mu_a mu_b): slid {x:.4f} m, expected {expected:.4f} m (3 %)')
 
 
+def quat_matrix(q):
+    w, x, y, z = q
+    return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
+
+
+def test_gyroscopic(adapter):
+    """Zero gravity, a box of principal inertia (0.1, 0.2, 0.3) spinning at (1, 1, 0) rad/s:
+    with the gyroscopic term its world angular momentum (0.1, 0.2, 0) stays and its angular
+    velocity turns; without it (w x I w left out) the angular velocity stays (1, 1, 0)."""
+    for gyroscopic in (True, False):
+        if not gyroscopic and not adapter['gyroscopic_switch']:
+            print('note  the gyroscopic term cannot be turned off in this engine')
+            continue
+        box = unit_box('box', 5)
+        box['inertia'] = [[0.1, 0, 0], [0, 0.2, 0], [0, 0, 0.3]]
+        box['boxes'][0]['half_extents'] = [0.8, 0.5, 0.2]
+        box['angular_velocity'] = [1.0, 1.0, 0]
+        scene = make_scene([box], ground=False, gravity=0)
+        scene['effects']['gyroscopic'] = gyroscopic
+        b = run(adapter, scene, 240)['bodies'][0]
+        R = quat_matrix(b['orientation'])
+        w = b['angular_velocity']
+        w_body = [sum(R[j][i] * w[j] for j in range(3)) for i in range(3)]
+        L_body = [0.1 * w_body[0], 0.2 * w_body[1], 0.3 * w_body[2]]
+        L = [sum(R[i][j] * L_body[j] for j in range(3)) for i in range(3)]
+        if gyroscopic:
+            err = max(abs(p - e) for p, e in zip(L, [0.1, 0.2, 0]))
+            check(err < 5e-4, f'gyroscopic on: angular momentum {L} stays (0.1, 0.2, 0) (off {err:.2g})')
+        else:
+            err = max(abs(p - e) for p, e in zip(w, [1, 1, 0]))
+            check(err < 1e-4, f'gyroscopic off: angular velocity {w} stays (1, 1, 0) (off {err:.2g})')
+
+
 def test_restitution(adapter):
     """A box (e = 0.5) dropped from 1 m onto the ground (e = 0): the pair's max(e_a, e_b) = 0.5
     sends it back up e^2 = 0.25 m."""
@@ -342,6 +379,7 @@ def main():
     test_free_fall(adapter)
     test_offset_centre_of_mass(adapter)
     test_friction_law(adapter)
+    test_gyroscopic(adapter)
     test_restitution(adapter)
     test_damping(adapter)
     test_wire(adapter)
