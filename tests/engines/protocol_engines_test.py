@@ -330,6 +330,40 @@ def test_stack(adapter):
             break
 
 
+def max_depth(reply):
+    return max(c['depth'] for c in reply['contacts'])
+
+
+# One setting per engine whose effect is known, given at load: it must change the run as the
+# engine's model says (a setting passed through but not applied would leave it unchanged).
+def setting_jolt(adapter):
+    """A box started 1 cm inside the ground: Jolt leaves penetration_slop (0.02 m) uncorrected,
+    so it stays 1 cm deep; with a slop of 1 mm it is pushed out to 1 mm."""
+    scene = make_scene([unit_box('box', 0.49)])
+    default, tight = max_depth(run(adapter, scene, 240)), max_depth(run(adapter, scene, 240, {'penetration_slop': 0.001}))
+    check(abs(default - 0.01) < 1e-4 and abs(tight - 0.001) < 1e-4,
+          f'penetration_slop: depth {default:.5f} m at the default 0.02, {tight:.5f} m at 0.001 (0.01, 0.001)')
+
+
+def setting_rapier(adapter):
+    """A stack of 5 after 2 s: a contact spring four times as stiff (120 Hz instead of 30) sinks
+    the top box by far less (the soft contact's compression goes as 1 / frequency^2)."""
+    scene = make_scene([unit_box(f'box{i}', 0.5 + i) for i in range(5)])
+    sink = [4.5 - run(adapter, scene, 480, s)['bodies'][4]['position'][2] for s in ({}, {'contact_natural_frequency': 120})]
+    check(sink[1] < sink[0] / 4, f'contact_natural_frequency: stack sinks {sink[0] * 1e3:.2f} mm at 30 Hz, {sink[1] * 1e3:.2f} mm at 120 Hz (< a quarter)')
+
+
+def setting_mujoco(adapter):
+    """A resting box: halving solref's time constant makes the soft contact four times as stiff
+    (stiffness ~ 1 / timeconst^2), so it sinks a quarter as deep."""
+    scene = make_scene([unit_box('box', 0.5)])
+    default, half = max_depth(run(adapter, scene, 240)), max_depth(run(adapter, scene, 240, {'solref_timeconst': 0.01}))
+    check(0.22 < half / default < 0.28, f'solref_timeconst: depth {default:.3g} m at 0.02 s, {half:.3g} m at 0.01 s (ratio {half / default:.3f}, 1/4)')
+
+
+SETTING_CHECKS = {'jolt': setting_jolt, 'rapier': setting_rapier, 'mujoco-wasm': setting_mujoco}
+
+
 def test_bad_input(adapter, settings):
     a = Adapter(adapter['script'], REFERENCE)
     check(a.ask({'op': 'hello', 'protocol': 2}).get('ok') is False, 'hello with protocol 2: ok false')
@@ -384,6 +418,7 @@ def main():
     test_damping(adapter)
     test_wire(adapter)
     test_stack(adapter)
+    SETTING_CHECKS[engine](adapter)
     test_bad_input(adapter, settings)
     for a in _shared.values():
         check(a.close() == 0, 'the shared adapter exits with status 0 at end of input')
