@@ -12,11 +12,13 @@ const LAYER_STATIC = 0;
 const LAYER_MOVING = 1;
 const NUM_LAYERS = 2;
 
-// The WebAssembly build has a fixed 128 MiB heap. Jolt preallocates per body, body pair and
-// contact constraint; this many bodies (with room for their pairs) stays well inside it.
-const kMaxBodies = 10000;
-const kBodyPairsPerBody = 16; // a box in a pile touches a handful of others; 16 leaves room
-const kContactConstraintsPerBody = 16;
+// The WebAssembly build has a fixed 128 MiB heap and a fixed temporary allocator for each step.
+// Jolt preallocates per body, body pair and contact constraint, and a step's temporary needs grow
+// with them: with the room below, 2,600 boxes stepped and 3,500 exhausted the step's allocator
+// (an abort, which ends the WebAssembly module). This bound keeps a margin below that.
+const kMaxBodies = 2500;
+const kBodyPairsPerBody = 8; // a box in a pile or a wall touches up to 8 others (4 below, 4 above)
+const kContactConstraintsPerBody = 8;
 
 // The ground is Jolt's PlaneShape, a half-space bounded laterally at this half width.
 const kGroundHalfWidth = 1000; // m
@@ -110,6 +112,7 @@ class JoltEngine {
   }
 
   load(sceneJson, settings) {
+    if (this.aborted) throw new SceneError(this.aborted);
     this.release();
     const scene = readScene(sceneJson);
     const count = scene.bodies.length + (scene.ground ? 1 : 0);
@@ -332,7 +335,13 @@ class JoltEngine {
     const steps = this.settingsUsed.collision_steps;
     for (let k = 0; k < n; ++k) {
       const t0 = process.hrtime.bigint();
-      this.jolt.Step(this.scene.dt, steps);
+      try {
+        this.jolt.Step(this.scene.dt, steps);
+      } catch (e) {
+        if (!(e instanceof WebAssembly.RuntimeError)) throw e;
+        this.aborted = `Jolt aborted at ${this.time_.toFixed(6)} s of scene ${this.scene.name} (${e.message}): its fixed heap or step allocator is exhausted, and the module cannot run again in this process`;
+        throw new SceneError(this.aborted);
+      }
       seconds += Number(process.hrtime.bigint() - t0) * 1e-9;
       this.time_ += this.scene.dt;
       this.forgetRemoved();
