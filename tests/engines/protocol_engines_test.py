@@ -48,6 +48,7 @@ ENGINES = {
         'bounce_e': (0.46, 0.50),       # measured 0.476
         'fall_tol': 2e-5, 'substeps': 4, 'com_tol': 1e-4,
         'gyroscopic_switch': False,  # always on: the JS API has no switch (the adapter says so on stderr)
+        'compound_contacts': 6,  # a manifold per box; the two corners they share kept once
     },
     'mujoco-wasm': {
         'script': 'mujoco_wasm/mujoco_wasm_engine.mjs', 'precision': 'float64',
@@ -58,6 +59,7 @@ ENGINES = {
         'bounce_e': (0.40, 0.44),
         'fall_tol': 1e-9, 'substeps': 1, 'com_tol': 5e-4,
         'gyroscopic_switch': True,  # MuJoCo always has the term: the adapter cancels it when off
+        'compound_contacts': 8,  # 4 per box geom, the shared corners once for each box
     },
 }
 
@@ -173,6 +175,28 @@ def test_resting_box(adapter):
     z = r['bodies'][0]['position'][2]
     check(0.5 - hi - 1e-6 <= z <= 0.5 + 1e-6, f'resting box: centre at z = {z:.7f}')
     check(0 < r['engine_seconds'] < 10, f'engine_seconds {r["engine_seconds"]:.3g} s for 240 steps')
+
+
+def test_compound_on_fixed(adapter):
+    """A bar of two unit boxes (a compound, 2 kg) resting on a fixed slab whose top is at z = 1:
+    every contact is between the bar (a = 1) and the slab (b = 0), none with the ground (the slab
+    and the ground never move), normal (0, 0, 1), the points on the bar's bottom face."""
+    slab = unit_box('slab', 0.5)
+    slab.update({'fixed': True, 'boxes': [{'half_extents': [2, 2, 0.5], 'position': [0, 0, 0], 'orientation': [1, 0, 0, 0]}]})
+    bar = unit_box('bar', 1.5, mass=2.0)
+    bar['inertia'] = [[2 * 2 / 12, 0, 0], [0, 2 * 5 / 12, 0], [0, 0, 2 * 5 / 12]]
+    bar['boxes'] = [{'half_extents': [0.5, 0.5, 0.5], 'position': [x, 0, 0], 'orientation': [1, 0, 0, 0]} for x in (-0.5, 0.5)]
+    r = run(adapter, make_scene([slab, bar]), 240)
+    lo, hi = adapter['rest_depth']
+    contacts = r['contacts']
+    check(len(contacts) == adapter['compound_contacts'], f'compound on a fixed body: {len(contacts)} contacts ({adapter["compound_contacts"]})')
+    check(all(c['a'] == 1 and c['b'] == 0 for c in contacts), f'compound on a fixed body: pairs {sorted({(c["a"], c["b"]) for c in contacts})} are (1, 0)')
+    check(all(max(abs(n - e) for n, e in zip(c['normal'], (0, 0, 1))) < 1e-6 for c in contacts), 'compound on a fixed body: normals (0, 0, 1)')
+    check(all(abs(abs(c['position'][0]) - 0.5) < 0.5 + 1e-4 and abs(abs(c['position'][1]) - 0.5) < 1e-4
+              and abs(c['position'][2] - 1) < 1e-4 for c in contacts), 'compound on a fixed body: points on the bar\'s bottom face edges')
+    z = r['bodies'][1]['position'][2]
+    check(1.5 - 2 * hi - 1e-6 <= z <= 1.5 + 1e-6, f'compound on a fixed body: bar at z = {z:.7f}')
+    check(r['bodies'][0]['position'] == [0, 0, 0.5] and r['bodies'][0]['velocity'] == [0, 0, 0], f'the fixed body stays: {r["bodies"][0]}')
 
 
 def test_free_fall(adapter):
@@ -414,6 +438,7 @@ def main():
     start = time.time()
     settings = test_hello(engine, adapter)
     test_resting_box(adapter)
+    test_compound_on_fixed(adapter)
     test_free_fall(adapter)
     test_offset_centre_of_mass(adapter)
     test_friction_law(adapter)
