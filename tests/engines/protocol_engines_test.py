@@ -40,6 +40,7 @@ ENGINES = {
         'stack_top': (4.4997, 4.5),     # measured 4.499854
         'bounce_e': (0.49, 0.53),       # measured 0.514
         'fall_tol': 2e-5, 'substeps': 1, 'com_tol': 1e-4, 'gyroscopic_switch': True,
+        'compound_contacts': 4,  # manifold reduction merges the two boxes' manifolds: the bar's 4 corners
     },
     'rapier': {
         'script': 'rapier/rapier_engine.mjs', 'precision': 'float32',
