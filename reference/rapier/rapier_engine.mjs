@@ -3,7 +3,7 @@
 import RAPIER from '@dimforge/rapier3d-compat';
 import { serve } from '../protocol/engine_server.mjs';
 import { readScene, pairMaterial, wireGeometry, withoutDuplicates } from '../protocol/scene.mjs';
-import { add, sub, scale, dot, cross, quatRotate, matrixToQuat, symmetricEigen } from '../protocol/math.mjs';
+import { add, sub, scale, dot, quatRotate, matrixToQuat, symmetricEigen } from '../protocol/math.mjs';
 
 const PACKAGE_VERSION = '0.21.0';
 
