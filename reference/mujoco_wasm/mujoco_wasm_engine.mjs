@@ -283,7 +283,7 @@ class MujocoEngine {
       seconds += Number(process.hrtime.bigint() - t0) * 1e-9;
       this.steps += 1;
     }
-    this.readContacts();
+    this.lastContacts = null; // read when asked: d.contact stays the step's until the next step
     this.stale = true;
     return seconds;
   }
@@ -352,6 +352,7 @@ class MujocoEngine {
   }
 
   contacts() {
+    if (!this.lastContacts) this.readContacts();
     return this.lastContacts;
   }
 }
