@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -163,11 +164,15 @@ void add_engine_command(std::string_view text) {
   if (command.find_first_not_of(" \t") == std::string::npos) {
     throw EngineCommandError("--engine-cmd " + name + ": the command is empty");
   }
+  // The names given by --engine-cmd so far, to tell them from the built-in engines in a message.
+  static std::vector<std::string> given;
   if (find_engine_row(name)) {
-    throw EngineCommandError("--engine-cmd " + name + ": the name is taken by another engine (available: " +
-                             available_engines_text() + ")");
+    const bool earlier = std::find(given.begin(), given.end(), name) != given.end();
+    throw EngineCommandError("--engine-cmd " + name + ": the name is taken by " +
+                             (earlier ? "an earlier --engine-cmd" : "a built-in engine"));
   }
   add_engine(process_row(name, "a program over the engine protocol: " + command, command, ""));
+  given.push_back(name);
 }
 
 void set_engine_timeout(double seconds) {
