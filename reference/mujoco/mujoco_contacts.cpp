@@ -28,15 +28,11 @@ constexpr const char* kQueryModel = R"(<mujoco model="boxpile_query">
 )";
 constexpr int kPlane = 0, kBoxA = 1, kBoxB = 2;
 
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-
 // One model per thread: queries write into it.
 struct QueryModel {
   QueryModel() : model(load_mjcf(kQueryModel)), data(mj_makeData(model.get())) {}
   ModelPtr model;
-  std::unique_ptr<mjData, DataDeleter> data;
+  DataPtr data;
   std::array<mjContact, mjMAXCONPAIR> found{};
 
   void place(int geom, const OrientedBox& box) {
@@ -66,7 +62,6 @@ QueryModel& query_model() {
   return q;
 }
 
-Vec3 vec3(const mjtNum* p) { return {p[0], p[1], p[2]}; }
 
 // The deepest kMaxManifoldPoints of MuJoCo's points, each in our convention.
 template <class Convert>

@@ -16,10 +16,6 @@ using namespace reference_detail;
 
 namespace {
 
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-
 // How a scene body is held in MuJoCo's model.
 enum class Mount { Fixed, Free, Wire };
 
@@ -47,7 +43,6 @@ constexpr std::array<std::pair<int, const char*>, 6> kFatalWarnings = {{
     {mjWARN_BADQACC, "a bad number in qacc (MuJoCo reset the state)"},
 }};
 
-Vec3 vec3(const mjtNum* p) { return {p[0], p[1], p[2]}; }
 Mat3 mat3(const mjtNum* p) {
   Mat3 r;
   r << p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8];  // row-major
@@ -81,7 +76,7 @@ struct MujocoEngine::World {
   MujocoSettings settings;
   std::vector<RigidBody> bodies;
   ModelPtr model;
-  std::unique_ptr<mjData, DataDeleter> data;
+  DataPtr data;
   std::vector<BodyMap> map;      // scene order
   std::vector<GeomTag> tags;     // by MuJoCo geom id
   std::vector<BodyContact> contacts;

@@ -215,6 +215,7 @@ std::string mujoco_mjcf(const Scene& scene, const std::vector<RigidBody>& bodies
 }
 
 void ModelDeleter::operator()(mjModel_* m) const { mj_deleteModel(m); }
+void DataDeleter::operator()(mjData_* d) const { mj_deleteData(d); }
 
 ModelPtr load_mjcf(const std::string& xml) {
   ensure_mujoco_handlers();

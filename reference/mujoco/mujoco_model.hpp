@@ -11,6 +11,7 @@
 #include "boxpile/sim/scene.hpp"
 
 struct mjModel_;
+struct mjData_;
 
 namespace boxpile::reference_detail {
 
@@ -32,6 +33,13 @@ struct ModelDeleter {
   void operator()(mjModel_* m) const;
 };
 using ModelPtr = std::unique_ptr<mjModel_, ModelDeleter>;
+struct DataDeleter {
+  void operator()(mjData_* d) const;
+};
+using DataPtr = std::unique_ptr<mjData_, DataDeleter>;
+
+// A vector MuJoCo keeps as three numbers (mjtNum is double in Debian's build).
+inline Vec3 vec3(const double* p) { return {p[0], p[1], p[2]}; }
 
 // Compiles an MJCF document held in memory; MujocoError with MuJoCo's message if it is refused.
 ModelPtr load_mjcf(const std::string& xml);

@@ -17,10 +17,10 @@ constexpr double kLongestTimeconst = 10.0;  // s
 constexpr double kWidestTransition = 1.0;   // m
 constexpr double kLeastRatio = 1e-3, kLargestRatio = 1e3;
 
-const char* solver_name(MujocoSolver s) {
+const char* solver_key(MujocoSolver s) {
   return s == MujocoSolver::PGS ? "pgs" : s == MujocoSolver::CG ? "cg" : "newton";
 }
-const char* integrator_name(MujocoIntegrator i) {
+const char* integrator_key(MujocoIntegrator i) {
   return i == MujocoIntegrator::RK4 ? "rk4" : i == MujocoIntegrator::Implicit ? "implicit" : "euler";
 }
 
@@ -35,7 +35,7 @@ const SettingsTable<MujocoSettings>& mujoco_settings_table() {
          const std::string n = v.get<std::string>();
          s.solver = n == "pgs" ? MujocoSolver::PGS : n == "cg" ? MujocoSolver::CG : MujocoSolver::Newton;
        },
-       [](const S& s) { return json(solver_name(s.solver)); }},
+       [](const S& s) { return json(solver_key(s.solver)); }},
       {{"iterations", Kind::Integer, "", "most main-solver iterations per step", 1, reference_limits::kMaxIterations},
        [](S& s, const json& v) { s.iterations = v.get<int>(); }, [](const S& s) { return json(s.iterations); }},
       {{"tolerance", Kind::Number, "", "main solver stops when its relative improvement is below this (0: never)", 0,
@@ -80,7 +80,7 @@ const SettingsTable<MujocoSettings>& mujoco_settings_table() {
                         : n == "implicit" ? MujocoIntegrator::Implicit
                                           : MujocoIntegrator::Euler;
        },
-       [](const S& s) { return json(integrator_name(s.integrator)); }},
+       [](const S& s) { return json(integrator_key(s.integrator)); }},
   };
   return table;
 }
