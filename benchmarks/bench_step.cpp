@@ -1,5 +1,5 @@
-// Time per step of our engine and the reference engines (ODE QuickStep, Bullet), each at its
-// defaults, on the shared scenes and on generated ones:
+// Time per step of our engine and the reference engines (ODE QuickStep, Bullet, DART), each at
+// its defaults (DART also with FCL's meshes, DART's own default detector), on the shared scenes and on generated ones:
 //   step_scene    stack_5, stack_10 and pile_100 from fixtures/scenes, through their whole
 //                 duration (5 s at dt 1/240, 1,200 steps): the falling and the resting phase;
 //                 pile_100/own_lab_loops is ours with the lab text's two loops alone (our
@@ -59,6 +59,13 @@ void step_scene(benchmark::State& state, const std::string& scene_name, const st
   time_steps(state, scene, engine, settings, step_count(scene.time));
 }
 
+// DART with another detector than our default for it (DART's own default is Fcl).
+ReferenceSettings dart_with(DartDetector detector) {
+  ReferenceSettings s;
+  s.dart.detector = detector;
+  return s;
+}
+
 ReferenceSettings ode_world_step() {
   ReferenceSettings s;
   s.ode_method = OdeStepMethod::Step;
@@ -73,11 +80,17 @@ BENCHMARK_CAPTURE(step_scene, stack_5/bullet, "stack_5", "bullet", ReferenceSett
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_5/own, "stack_5", "own", ReferenceSettings{})
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, stack_5/dart, "stack_5", "dart", ReferenceSettings{})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, stack_5/dart_fcl, "stack_5", "dart", dart_with(DartDetector::Fcl))
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_10/own, "stack_10", "own", ReferenceSettings{})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_10/ode_quickstep, "stack_10", "ode", ReferenceSettings{})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_10/bullet, "stack_10", "bullet", ReferenceSettings{})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, stack_10/dart, "stack_10", "dart", ReferenceSettings{})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, pile_100/own, "pile_100", "own", ReferenceSettings{})
     ->Unit(benchmark::kMillisecond)
@@ -86,6 +99,9 @@ BENCHMARK_CAPTURE(step_scene, pile_100/ode_quickstep, "pile_100", "ode", Referen
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
 BENCHMARK_CAPTURE(step_scene, pile_100/bullet, "pile_100", "bullet", ReferenceSettings{})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
+BENCHMARK_CAPTURE(step_scene, pile_100/dart, "pile_100", "dart", ReferenceSettings{})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
 

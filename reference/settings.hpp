@@ -1,9 +1,11 @@
-// Settings of the reference engines (ODE and Bullet) that a Scene does not say: solver method and
+// Settings of the reference engines (ODE, Bullet and DART) that a Scene does not say: solver method and
 // iterations, error reduction and constraint mixing, contact caps. Every field has a default and a
 // unit; docs/reference-engines.md says how each maps to the engine and what cannot be matched.
 #pragma once
 
 #include <limits>
+
+#include "boxpile/reference/dart/dart_settings.hpp"
 
 namespace boxpile {
 
@@ -59,6 +61,9 @@ struct ReferenceSettings {
   // Approach speeds below this bounce with no restitution, m/s (ODE bounce_vel, Bullet
   // m_restitutionVelocityThreshold; Bullet's default).
   double restitution_threshold = 0.2;
+
+  // --- DART 6.12 (its own struct: reference/dart/dart_settings.hpp) --------------------------
+  DartSettings dart;
 };
 
 }  // namespace boxpile

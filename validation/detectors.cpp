@@ -3,6 +3,7 @@
 #include <array>
 #include <string>
 
+#include "boxpile/reference/dart/dart_contacts.hpp"
 #include "boxpile/reference/reference_contacts.hpp"
 #include "boxpile/sim/collision/box_box.hpp"
 #include "boxpile/sim/collision/box_plane.hpp"
@@ -26,16 +27,31 @@ Manifold ode_pair(const OrientedBox& a, const OrientedBox& b, const DetectOption
 Manifold ode_plane(const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return ode_box_plane(a, p); }
 Manifold bullet_pair(const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return bullet_box_box(a, b); }
 Manifold bullet_plane(const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return bullet_box_plane(a, p); }
+Manifold dart_pair(const OrientedBox& a, const OrientedBox& b, const DetectOptions&) {
+  return dart_box_box(DartDetector::Dart, a, b);
+}
+Manifold dart_plane(const OrientedBox& a, const HalfSpace& p, const DetectOptions&) {
+  return dart_box_plane(DartDetector::Dart, a, p);
+}
+Manifold fcl_pair(const OrientedBox& a, const OrientedBox& b, const DetectOptions&) {
+  return dart_box_box(DartDetector::FclPrimitive, a, b);
+}
+Manifold fcl_plane(const OrientedBox& a, const HalfSpace& p, const DetectOptions&) {
+  return dart_box_plane(DartDetector::FclPrimitive, a, p);
+}
 Manifold multipoint_plane(const OrientedBox& a, const HalfSpace& p, const DetectOptions&) {
   return bullet_box_plane(a, p, kBulletMultipoint);
 }
 
-const std::array<DetectorInfo, 4> kDetectors = {{
+const std::array<DetectorInfo, 6> kDetectors = {{
     {kOwnDetector, "boxpile's separating-axis test with face clipping", false, &own_box_box, &own_box_plane},
     {"ode", "ODE's dCollide (dBoxBox, box-plane)", false, &ode_pair, &ode_plane},
     {"bullet", "Bullet's btBoxBoxDetector through a persistent manifold", false, &bullet_pair, &bullet_plane},
     {"bullet_multipoint", "Bullet with setPlaneConvexMultipointIterations(3, 3)", true, &bullet_pair,
      &multipoint_plane},
+    {"dart", "DART's DARTCollisionDetector (box-box; the ground as a large box)", false, &dart_pair, &dart_plane},
+    {"fcl", "FCL 0.7's box primitives through DART's FCLCollisionDetector (the ground as a large box)", false,
+     &fcl_pair, &fcl_plane},
 }};
 
 }  // namespace

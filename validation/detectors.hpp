@@ -1,5 +1,5 @@
 // Every contact detector by name, one row each: ours, ODE's, Bullet's (and Bullet with its
-// multipoint box-plane option). `boxpile contacts`, `contacts --serve` and `boxpile conform`
+// multipoint box-plane option), DART's and FCL's (through DART). `boxpile contacts`, `contacts --serve` and `boxpile conform`
 // iterate over this table; an outside collider joins them as a Collider (check_collider.hpp).
 #pragma once
 

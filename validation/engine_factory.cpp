@@ -4,6 +4,7 @@
 #include <array>
 
 #include "boxpile/reference/bullet_engine.hpp"
+#include "boxpile/reference/dart/dart_engine.hpp"
 #include "boxpile/reference/ode_engine.hpp"
 #include "boxpile/sim/world.hpp"
 
@@ -42,12 +43,13 @@ std::unique_ptr<Engine> build_own_with(const Scene& scene, const ReferenceSettin
 }
 
 // Adding an engine is one line here.
-constexpr std::array<EngineEntry, 5> kEngines = {{
+constexpr std::array<EngineEntry, 6> kEngines = {{
     {"own", &build_own, ""},
     {"own-impulse", &build_own_with<ContactSolver::Impulse>, ""},
     {"own-penalty", &build_own_with<ContactSolver::Penalty>, ""},
     {"ode", &build<OdeEngine>, ""},
     {"bullet", &build<BulletEngine>, ""},
+    {"dart", &build<DartEngine>, ""},
 }};
 
 constexpr std::array<std::string_view, kEngines.size()> kAllNames = [] {

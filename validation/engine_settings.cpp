@@ -8,6 +8,7 @@
 #include "boxpile/sim/solver/step_context.hpp"
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/validation/engine_factory.hpp"
+#include "boxpile/reference/dart/dart_settings_table.hpp"
 
 namespace boxpile {
 namespace {
@@ -185,6 +186,7 @@ std::span<const EngineSetting> engine_settings(std::string_view engine) {
   check_engine_name(engine);
   if (engine == "ode") return kOdeSettings;
   if (engine == "bullet") return kBulletSettings;
+  if (engine == "dart") return dart_engine_settings();
   if (engine == "own-impulse") return kImpulseSettings;
   if (engine == "own-penalty") return kPenaltySettings;
   if (engine == "own") return kOwnSettings;
