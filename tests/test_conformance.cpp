@@ -202,6 +202,8 @@ const std::vector<Reference> kBoxBoxReferences = {
       {Mismatch::Kind, 7e-3},
       {Mismatch::Normal, 9e-3},
       {Mismatch::Merged, 1.1e-2}}},
+    {"dart", 4, false, {}},
+    {"fcl", 4, false, {}},
 };
 
 // Our near-face edge-edge sets (is_near_face) as a fraction of the samples, measured over 20,000
@@ -474,6 +476,8 @@ const std::vector<PlaneReference> kPlaneReferences = {
     {"ode", 4, false, true, 0.03, 0.03},
     {"bullet", 1, true, true},
     {"bullet_multipoint", 4, true, true, 0.75, 8e-4},
+    {"dart", 4, false, true, 0.0, 0.0},
+    {"fcl", 4, false, true, 0.0, 0.0},
 };
 
 // What is wrong with a reference's set against ours, by name (see PlaneReference); empty when
@@ -592,34 +596,34 @@ struct FixtureExpectation {
 
 const std::vector<FixtureExpectation> kFixtures = {
     // The foundation special cases.
-    {"aligned_offset", {{"own", 4}, {"ode", 4}, {"bullet", 4}}, {}},
-    {"yaw45_octagon", {{"own", 8}, {"ode", 8}, {"bullet", 4}}, {}},  // Bullet's cap: 4 of our 8
-    {"crossing_edges", {{"own", 1}, {"ode", 1}, {"bullet", 1, kDiffer}}, {}},  // Bullet's fudge2: 2e-5 m deeper
-    {"edge_on_face", {{"own", 2}, {"ode", 2}, {"bullet", 2}}, {}},
-    {"vertex_on_face", {{"own", 1}, {"ode", 1}, {"bullet", 1}}, {}},
-    {"separated", {{"own", 0}, {"ode", 0}, {"bullet", 0}}, {}},
-    {"touching", {{"own", 4}, {"ode", 4}, {"bullet", 4}}, {}},
-    {"deep_overlap", {{"own", 4}, {"ode", 4}, {"bullet", 4}}, {}},
-    {"parallel_edges", {{"own", 4}, {"ode", 4}, {"bullet", 2}}, {}},  // Bullet merges points 7 mm apart
-    {"small_on_large", {{"own", 4}, {"ode", 4}, {"bullet", 4}}, {}},
-    {"plane_flat", {{"own", 4}, {"ode", 4}, {"bullet", 1}, {"bullet_multipoint", 3}}, {}},
-    {"plane_edge", {{"own", 2}, {"ode", 2}, {"bullet", 1}, {"bullet_multipoint", 2}}, {}},
-    {"plane_vertex", {{"own", 1}, {"ode", 1}, {"bullet", 1}, {"bullet_multipoint", 1}}, {}},
-    {"plane_tilted", {{"own", 4}, {"ode", 4}, {"bullet", 1}, {"bullet_multipoint", 3}}, {}},
+    {"aligned_offset", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 4}}, {}},
+    {"yaw45_octagon", {{"own", 8}, {"ode", 8}, {"dart", 4}, {"fcl", 4}, {"bullet", 4}}, {}},  // Bullet's cap: 4 of our 8
+    {"crossing_edges", {{"own", 1}, {"ode", 1}, {"dart", 1}, {"fcl", 1}, {"bullet", 1, kDiffer}}, {}},  // Bullet's fudge2: 2e-5 m deeper
+    {"edge_on_face", {{"own", 2}, {"ode", 2}, {"dart", 2}, {"fcl", 2}, {"bullet", 2}}, {}},
+    {"vertex_on_face", {{"own", 1}, {"ode", 1}, {"dart", 1}, {"fcl", 1}, {"bullet", 1}}, {}},
+    {"separated", {{"own", 0}, {"ode", 0}, {"dart", 0}, {"fcl", 0}, {"bullet", 0}}, {}},
+    {"touching", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 4}}, {}},
+    {"deep_overlap", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 4}}, {}},
+    {"parallel_edges", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 2}}, {}},  // Bullet merges points 7 mm apart
+    {"small_on_large", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 4}}, {}},
+    {"plane_flat", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 1}, {"bullet_multipoint", 3}}, {}},
+    {"plane_edge", {{"own", 2}, {"ode", 2}, {"dart", 2}, {"fcl", 2}, {"bullet", 1}, {"bullet_multipoint", 2}}, {}},
+    {"plane_vertex", {{"own", 1}, {"ode", 1}, {"dart", 1}, {"fcl", 1}, {"bullet", 1}, {"bullet_multipoint", 1}}, {}},
+    {"plane_tilted", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 1}, {"bullet_multipoint", 3}}, {}},
     // Conventions that differ by design.
     {"plane_bullet_speculative",
-     {{"own", 0}, {"ode", 0}, {"bullet", 1, kDiffer}, {"bullet_multipoint", 3, kDiffer}}, {}},
-    {"plane_deep_six", {{"own", 6}, {"ode", 4}, {"bullet", 1}, {"bullet_multipoint", 1}}, {}},
-    {"plane_ode_missed_vertex", {{"own", 4}, {"ode", 3}, {"bullet", 1}, {"bullet_multipoint", 1}}, {}},
-    {"bullet_merged_points", {{"own", 3}, {"ode", 3}, {"bullet", 2}}, {}},
+     {{"own", 0}, {"ode", 0}, {"dart", 0}, {"fcl", 0}, {"bullet", 1, kDiffer}, {"bullet_multipoint", 3, kDiffer}}, {}},
+    {"plane_deep_six", {{"own", 6}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 1}, {"bullet_multipoint", 1}}, {}},
+    {"plane_ode_missed_vertex", {{"own", 4}, {"ode", 3}, {"dart", 3}, {"fcl", 3}, {"bullet", 1}, {"bullet_multipoint", 1}}, {}},
+    {"bullet_merged_points", {{"own", 3}, {"ode", 3}, {"dart", 3}, {"fcl", 3}, {"bullet", 2}}, {}},
     // Our near-face edge-edge set: the references' one edge point, then two of the face's clipped points.
-    {"near_face_edge", {{"own", 3}, {"ode", 1}, {"bullet", 1, kDiffer}}, {}},  // Bullet's fudge2: 4e-6 m deeper
-    {"face_edge_tie", {{"own", 3}, {"ode", 1, kDiffer}, {"bullet", 1, kDiffer}}, Verdict::BothAcceptable},
+    {"near_face_edge", {{"own", 3}, {"ode", 1}, {"dart", 1}, {"fcl", 1}, {"bullet", 1, kDiffer}}, {}},  // Bullet's fudge2: 4e-6 m deeper
+    {"face_edge_tie", {{"own", 3}, {"ode", 1, kDiffer}, {"dart", 1, kDiffer}, {"fcl", 1, kDiffer}, {"bullet", 1, kDiffer}}, Verdict::BothAcceptable},
     // Where a reference is wrong.
-    {"ode_deeper_edge_pair", {{"own", 1}, {"ode", 1, kDiffer}, {"bullet", 1, kDiffer}}, Verdict::OwnRight},
+    {"ode_deeper_edge_pair", {{"own", 1}, {"ode", 1, kDiffer}, {"dart", 1, kDiffer}, {"fcl", 1, kDiffer}, {"bullet", 1, kDiffer}}, Verdict::OwnRight},
     // Ours: the edge point, then two clipped points of B's face 0.034 rad from its normal (near-face).
-    {"ode_edge_point_outside", {{"own", 3}, {"ode", 1, kDiffer}, {"bullet", 1, kDiffer}}, Verdict::OwnRight},
-    {"bullet_phantom_edge", {{"own", 0}, {"ode", 0}, {"bullet", 1, kDiffer}}, Verdict::OwnRight},
+    {"ode_edge_point_outside", {{"own", 3}, {"ode", 1, kDiffer}, {"dart", 1, kDiffer}, {"fcl", 1, kDiffer}, {"bullet", 1, kDiffer}}, Verdict::OwnRight},
+    {"bullet_phantom_edge", {{"own", 0}, {"ode", 0}, {"dart", 0}, {"fcl", 0}, {"bullet", 1, kDiffer}}, Verdict::OwnRight},
 };
 
 Agreement agreement(const Manifold& own, const Manifold& theirs) {

@@ -202,7 +202,8 @@ void DartEngine::World::add_wire_body(int index) {
   dart::dynamics::PrismaticJoint::Properties slide;
   slide.mAxis = axis;
   slide.mT_ParentBodyToJoint = dart_transform(wire.from, Mat3::Identity());
-  auto [prismatic, carriage] = skeleton->createJointAndBodyNodePair<dart::dynamics::PrismaticJoint>(nullptr, slide);
+  auto [prismatic, carriage] = skeleton->createJointAndBodyNodePair<dart::dynamics::PrismaticJoint>(
+      nullptr, slide, BodyNode::AspectProperties(rb.name + " carriage"));
   const double f = settings.wire_carriage_mass_fraction;
   carriage->setInertia(dart::dynamics::Inertia(f * rb.mass, Vec3::Zero(), f * rb.inertia_body));
   prismatic->setPositionLowerLimit(0, 0.0);
@@ -213,7 +214,8 @@ void DartEngine::World::add_wire_body(int index) {
 
   dart::dynamics::BallJoint::Properties ball;
   ball.mT_ChildBodyToJoint = dart_transform(anchor_local, Mat3::Identity());
-  auto [joint, node] = skeleton->createJointAndBodyNodePair<dart::dynamics::BallJoint>(carriage, ball);
+  auto [joint, node] = skeleton->createJointAndBodyNodePair<dart::dynamics::BallJoint>(
+      carriage, ball, BodyNode::AspectProperties(rb.name));
   node->setInertia(dart::dynamics::Inertia(rb.mass, Vec3::Zero(), rb.inertia_body));
   add_boxes(node, index);
   joint->setPositions(dart::dynamics::BallJoint::convertToPositions(rb.R));
