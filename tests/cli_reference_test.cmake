@@ -11,13 +11,15 @@ run_boxpile(0 contacts "${FIXTURES}/contacts/yaw45_octagon.json")
 expect_length("${out}" 8 engines own contacts)
 expect_length("${out}" 8 engines ode contacts)
 expect_length("${out}" 4 engines bullet contacts)  # Bullet caps box-box at 4
+expect_length("${out}" 4 engines dart contacts)  # so do DART's and FCL's
+expect_length("${out}" 4 engines fcl contacts)
 expect_json("${out}" 4 diff bullet points bullet)
 expect_match("${out}" "^0(\\.0)?$" diff ode normal_angle)
 expect_json("${out}" ON diff bullet smaller_inside_hull)
 expect_json("${out}" box-box kind)
 
 run_boxpile(0 contacts "${FIXTURES}/contacts/plane_flat.json")
-expect_length("${out}" 4 engines)  # own, ode, bullet and bullet_multipoint
+expect_length("${out}" 6 engines)  # own, ode, bullet, bullet_multipoint, dart and fcl
 expect_length("${out}" 1 engines bullet contacts)
 expect_json("${out}" box-plane kind)
 

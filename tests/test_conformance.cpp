@@ -202,8 +202,11 @@ const std::vector<Reference> kBoxBoxReferences = {
       {Mismatch::Kind, 7e-3},
       {Mismatch::Normal, 9e-3},
       {Mismatch::Merged, 1.1e-2}}},
-    {"dart", 4, false, {}},
-    {"fcl", 4, false, {}},
+    // DART's box-box is a port of ODE's dBoxBox, and so is FCL 0.7's: ODE's rates exactly (invalid
+    // 4, kind 59, normal 83 of 20,000, seed 11), with at most 4 points (they cull to 4 where
+    // ODE keeps 8). Gated as ODE.
+    {"dart", 4, false, {{Mismatch::Invalid, 6e-4}, {Mismatch::Kind, 7e-3}, {Mismatch::Normal, 9e-3}}},
+    {"fcl", 4, false, {{Mismatch::Invalid, 6e-4}, {Mismatch::Kind, 7e-3}, {Mismatch::Normal, 9e-3}}},
 };
 
 // Our near-face edge-edge sets (is_near_face) as a fraction of the samples, measured over 20,000
@@ -476,8 +479,12 @@ const std::vector<PlaneReference> kPlaneReferences = {
     {"ode", 4, false, true, 0.03, 0.03},
     {"bullet", 1, true, true},
     {"bullet_multipoint", 4, true, true, 0.75, 8e-4},
-    {"dart", 4, false, true, 0.0, 0.0},
-    {"fcl", 4, false, true, 0.0, 0.0},
+    // dart, fcl: dBoxBox against the ground box (a box of 1e3 m under the plane), at most 4 points
+    // culled by spread rather than depth: fewer than min(ours, 4) in 9.5% of the samples (1,899 of
+    // 20,000, seed 12), other than our deepest in 5.0% (1,003); both detectors alike. Gated at
+    // about twice.
+    {"dart", 4, false, true, 0.19, 0.10},
+    {"fcl", 4, false, true, 0.19, 0.10},
 };
 
 // What is wrong with a reference's set against ours, by name (see PlaneReference); empty when

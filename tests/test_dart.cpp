@@ -82,7 +82,8 @@ TEST_CASE("DART: a resting cube's contacts follow our convention with every dete
   // A unit cube at rest on the ground, turned 0.3 rad about z, after 1 s: the ground is body B,
   // the normal +z, the points at the four bottom corners, midway between the surfaces (z =
   // -depth/2), the depth the small penetration DART's error reduction leaves. FCL's meshes give
-  // two more points inside the bottom face, on the diagonal its triangles share (measured).
+  // two more points inside the bottom face, where the ground box's triangles' shared diagonal
+  // crosses its edges (measured).
   Scene scene = empty_scene(Effects{true, true, false, false, false}, true);
   BodyDesc cube = unit_box("cube", Vec3(0, 0, 0.5));
   cube.frame.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3::UnitZ()));
@@ -106,10 +107,12 @@ TEST_CASE("DART: a resting cube's contacts follow our convention with every dete
       CHECK(c.contact.depth > 0.0);
       CHECK(c.contact.depth < 1e-3);
       CHECK(std::abs(c.contact.position.z() + 0.5 * c.contact.depth) < 1e-9);
-      // At a bottom corner of the cube, in its own axes (FCL's meshes: also on the diagonal).
+      // At a bottom corner of the cube, in its own axes (FCL's meshes: also on the world's
+      // diagonal x = -y, inside the face).
       const Vec3 local = s.orientation.conjugate() * (c.contact.position - s.position);
       const bool corner = std::abs(std::abs(local.x()) - 0.5) < 1e-6 && std::abs(std::abs(local.y()) - 0.5) < 1e-6;
-      const bool diagonal = std::abs(local.x() + local.y()) < 1e-6 && std::abs(local.x()) < 0.5;
+      const bool diagonal = std::abs(c.contact.position.x() + c.contact.position.y()) < 1e-6 &&
+                            local.head<2>().cwiseAbs().maxCoeff() < 0.5;
       CHECK((corner || (name == "fcl" && diagonal)));
     }
     CHECK(std::abs(s.position.z() - 0.5) < 1e-3);
@@ -261,16 +264,18 @@ TEST_CASE("DART: restitution of a pair of equal materials is that material's", "
 
 TEST_CASE("DART: five stacked cubes stand for 5 s", "[dart]") {
   // Measured on this system with the Dantzig solver and DART's own detector: top z - 4.5 =
-  // -1e-5 m, drift below 1e-5 m.
+  // -4.3e-6 m (ERP 0.01 leaves 1.4e-6 m in each of the 5 contact layers), drift 1.2e-6 m. The
+  // gates allow 5 and 10 times that (the LCP's pivoting order may differ with rounding
+  // elsewhere); any slow sinking or sliding fails them.
   const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/stack_5.json");
   const auto engine = dart(scene);
   run(*engine, static_cast<int>(step_count(scene.time)));
   const BodyState top = states_of(*engine).back();
   INFO("top at " << top.position.transpose());
-  CHECK(top.position.z() - 4.5 > -1e-4);
-  CHECK(top.position.z() - 4.5 < 1e-5);
-  CHECK(top.position.head<2>().norm() < 1e-4);
-  CHECK(top.velocity.norm() < 1e-3);
+  CHECK(top.position.z() - 4.5 > -2e-5);
+  CHECK(top.position.z() - 4.5 < 1e-6);
+  for (const BodyState& b : states_of(*engine)) CHECK(b.position.head<2>().norm() < 1e-5);
+  CHECK(top.velocity.norm() < 1e-6);
 }
 
 TEST_CASE("DART: a fixed body holds up a box and never moves", "[dart]") {

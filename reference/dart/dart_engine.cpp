@@ -200,6 +200,7 @@ void DartEngine::World::add_wire_body(int index) {
 
   Skeleton* skeleton = add_skeleton(rb.name);
   dart::dynamics::PrismaticJoint::Properties slide;
+  slide.mName = rb.name + " slide";
   slide.mAxis = axis;
   slide.mT_ParentBodyToJoint = dart_transform(wire.from, Mat3::Identity());
   auto [prismatic, carriage] = skeleton->createJointAndBodyNodePair<dart::dynamics::PrismaticJoint>(
@@ -213,6 +214,7 @@ void DartEngine::World::add_wire_body(int index) {
   prismatic->setVelocity(0, axis.dot(rb.velocity_at(anchor)));
 
   dart::dynamics::BallJoint::Properties ball;
+  ball.mName = rb.name + " ball";
   ball.mT_ChildBodyToJoint = dart_transform(anchor_local, Mat3::Identity());
   auto [joint, node] = skeleton->createJointAndBodyNodePair<dart::dynamics::BallJoint>(
       carriage, ball, BodyNode::AspectProperties(rb.name));
