@@ -107,12 +107,12 @@ TEST_CASE("DART: a resting cube's contacts follow our convention with every dete
       CHECK(c.contact.depth > 0.0);
       CHECK(c.contact.depth < 1e-3);
       CHECK(std::abs(c.contact.position.z() + 0.5 * c.contact.depth) < 1e-9);
-      // At a bottom corner of the cube, in its own axes (FCL's meshes: also on the world's
-      // diagonal x = -y, inside the face).
+      // At a bottom corner of the cube, in its own axes (FCL's meshes: also where the world's
+      // diagonal x = -y crosses an edge of the bottom face).
       const Vec3 local = s.orientation.conjugate() * (c.contact.position - s.position);
       const bool corner = std::abs(std::abs(local.x()) - 0.5) < 1e-6 && std::abs(std::abs(local.y()) - 0.5) < 1e-6;
       const bool diagonal = std::abs(c.contact.position.x() + c.contact.position.y()) < 1e-6 &&
-                            local.head<2>().cwiseAbs().maxCoeff() < 0.5;
+                            std::abs(local.head<2>().cwiseAbs().maxCoeff() - 0.5) < 1e-6;
       CHECK((corner || (name == "fcl" && diagonal)));
     }
     CHECK(std::abs(s.position.z() - 0.5) < 1e-3);
