@@ -7,6 +7,8 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/solver/step_context.hpp"
 #include "boxpile/sim/time_steps.hpp"
+#include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/validation/cli/activity.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/interruptible.hpp"
 #include "boxpile/validation/cli/progress.hpp"
@@ -99,11 +101,11 @@ void add_run_command(CLI::App& app, RunOptions& options) {
       ->capture_default_str();
   cmd->add_option("--out", options.out,
                   "Write the frames as JSON to this file (atomically); without it, print a summary");
-  cmd->add_option("--ode-method", options.ode_method, "ODE's stepper: quickstep (dWorldQuickStep) or step (dWorldStep)")
-      ->check(CLI::IsMember({"quickstep", "step"}))
-      ->capture_default_str();
+  cmd->add_option("--ode-method", options.ode_method,
+                  "ODE's stepper: quickstep (dWorldQuickStep, the default) or step (dWorldStep); ode only")
+      ->check(CLI::IsMember({"quickstep", "step"}));
   cmd->add_option("--iterations", options.iterations,
-                  "Solver iterations: ODE QuickStep's (default 20) or Bullet's (default 10)");
+                  "Solver iterations: ODE QuickStep's (default 20) or Bullet's (default 10); ode and bullet only");
   cmd->add_option("--set", options.set,
                   "Any setting of the engine as key=value, repeatable (e.g. --set erp=0.8 --set cfm=1e-5 for ode); "
                   "`boxpile settings` lists them with units")
@@ -117,11 +119,23 @@ int run_run(const RunOptions& options) {
   std::optional<OutputFile> out;
   if (options.out) out.emplace(*options.out, std::vector<std::filesystem::path>{options.scene});
   check_engine_name(options.engine);
+  // A flag the engine has no use for is refused, not ignored.
+  if (options.iterations && options.engine != "ode" && options.engine != "bullet") {
+    throw UsageError("--iterations: engine " + json_input::in_quotes(options.engine) +
+                     " has no solver iterations (ode and bullet have)");
+  }
+  if (options.ode_method && options.engine != "ode") {
+    throw UsageError("--ode-method: engine " + json_input::in_quotes(options.engine) + " is not ode");
+  }
   if (options.iterations) check_iterations(*options.iterations, options.limits);
-  Scene scene = load_scene(options.scene, options.limits.load());
+  check_distinct_settings(options.set);
+  std::optional<Scene> loaded;
+  {
+    const Activity loading("loading " + options.scene);
+    loaded.emplace(load_scene(options.scene, options.limits.load()));
+  }
+  Scene& scene = *loaded;
   apply_time_options(scene, options.dt, options.duration, options.limits);
-  const double dt = scene.time.dt;
-  const long steps = step_count(scene.time);
 
   ReferenceSettings settings;
   settings.ode_method = options.ode_method == "step" ? OdeStepMethod::Step : OdeStepMethod::QuickStep;
@@ -135,7 +149,13 @@ int run_run(const RunOptions& options) {
     scene = std::move(config.scene);
     settings = config.reference;
   }
+  // After the settings: `--set substeps=100000` multiplies the work.
+  check_run_work(scene, options.engine, options.limits, options.dt.has_value());
+  const double dt = scene.time.dt;
+  const long steps = step_count(scene.time);
+  const Activity building("building the " + options.engine + " engine for " + options.scene);
   const std::unique_ptr<Engine> engine = make_engine(options.engine, scene, settings);
+  const Activity running("running " + options.engine + " on " + options.scene);
   const bool record = out.has_value();
 
   Recorder recorder(scene, options.engine);

@@ -1,6 +1,10 @@
 #include "boxpile/validation/cli/run_limits.hpp"
 
+#include <algorithm>
+
 #include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/sim/solver/penalty_parameters.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/engine_factory.hpp"
 
@@ -13,11 +17,22 @@ void add_limit_options(CLI::App& cmd, RunLimits& limits, bool iterations) {
   cmd.add_option("--max-bodies", limits.max_bodies, "Refuse a scene of more bodies than this")
       ->check(CLI::Range(std::size_t{1}, std::size_t{100'000'000}))
       ->capture_default_str();
+  cmd.add_option("--max-pairs", limits.max_pairs,
+                  "Refuse a scene or a step with more pairs of touching bodies than this")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1'000'000'000}))
+      ->capture_default_str();
+  add_input_limit_option(cmd, limits.max_input_bytes);
   if (iterations) {
     cmd.add_option("--max-iterations", limits.max_iterations, "Refuse more solver iterations than this")
         ->check(CLI::Range(1, 1'000'000'000))
         ->capture_default_str();
   }
+}
+
+void add_input_limit_option(CLI::App& cmd, std::size_t& max_input_bytes) {
+  cmd.add_option("--max-input-bytes", max_input_bytes, "Refuse an input file larger than this")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 40))
+      ->capture_default_str();
 }
 
 std::string engine_choices() {
@@ -26,9 +41,29 @@ std::string engine_choices() {
   return list;
 }
 
+CLI::Validator whole_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+          return "must be a whole number >= 0 in digits, got " + json_input::in_quotes(text);
+        }
+        return "";
+      },
+      "UINT");
+}
+
+namespace {
+
+CLI::Validator non_empty() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string { return text.empty() ? "must be a number, got an empty value" : ""; }, "");
+}
+
+}  // namespace
+
 void add_time_options(CLI::App& cmd, std::optional<double>& dt, std::optional<double>& duration) {
-  cmd.add_option("--dt", dt, "Time step in s, in (0, 1] (default: the scene's)");
-  cmd.add_option("--duration", duration, "Simulated time in s, >= 0 (default: the scene's)");
+  cmd.add_option("--dt", dt, "Time step in s, in (0, 1] (default: the scene's)")->check(non_empty());
+  cmd.add_option("--duration", duration, "Simulated time in s, >= 0 (default: the scene's)")->check(non_empty());
 }
 
 void apply_time_options(Scene& scene, const std::optional<double>& dt, const std::optional<double>& duration,
@@ -45,17 +80,77 @@ void apply_time_options(Scene& scene, const std::optional<double>& dt, const std
   throw InputError(scene.source, on_dt ? "time.dt" : "time.duration", problem->what + hint);
 }
 
+namespace {
+
+bool runs_penalty(const Scene& scene, std::string_view engine) {
+  return engine == "own-penalty" || (engine == "own" && scene.solver.method == ContactSolver::Penalty);
+}
+
+}  // namespace
+
+long work_steps(const Scene& scene, std::string_view engine) {
+  const long steps = step_count(scene.time);
+  if (!runs_penalty(scene, engine)) return steps;
+  const long substeps = derive_penalty_parameters(scene).substeps;
+  // Saturates instead of overflowing: every count above the cap is refused alike.
+  return substeps > 0 && steps > limits::kMaxRepresentableSteps / substeps ? limits::kMaxRepresentableSteps + 1
+                                                                            : steps * substeps;
+}
+
+void check_run_work(const Scene& scene, std::string_view engine, const RunLimits& limits, bool dt_flag,
+                    std::string_view dt_source) {
+  if (runs_penalty(scene, engine)) {
+    const PenaltyParameters p = derive_penalty_parameters(scene);
+    if (const std::string problem = penalty_parameters_problem(scene, p); !problem.empty()) {
+      const std::string what = std::string(engine) + ": " + problem;
+      if (dt_flag) throw UsageError(std::string(dt_source) + ": " + what);
+      throw InputError(scene.source, "time.dt", what);
+    }
+  }
+  const long work = work_steps(scene, engine);
+  const long steps = step_count(scene.time);
+  if (work <= limits.max_steps || work == steps) return;  // the plain count was checked with the time settings
+  throw UsageError(std::string(engine) + ": " + std::to_string(steps) + " steps of " +
+                   std::to_string(derive_penalty_parameters(scene).substeps) +
+                   " penalty substeps each, above the cap of " + std::to_string(limits.max_steps) +
+                   " steps (--max-steps raises it; every substep finds and resolves the contacts)");
+}
+
 void check_distinct(const std::vector<std::string>& names, std::string_view flag) {
   for (std::size_t i = 0; i < names.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
-      if (names[i] == names[j]) throw UsageError(std::string(flag) + ": \"" + names[i] + "\" is listed twice");
+      if (names[i] == names[j]) throw UsageError(std::string(flag) + ": " + json_input::in_quotes(names[i]) + " is listed twice");
     }
   }
 }
 
 void check_engines(const std::vector<std::string>& names, std::string_view flag) {
-  for (const std::string& name : names) check_engine_name(name);
+  for (const std::string& name : names) {
+    if (name.empty()) throw UsageError(std::string(flag) + ": an empty engine name (two commas together, or one at an end)");
+    check_engine_name(name);
+  }
   check_distinct(names, flag);
+}
+
+void check_engines_differ(const std::vector<std::string>& names, const Scene& scene, std::string_view flag) {
+  const std::string own = scene.solver.method == ContactSolver::Penalty ? "own-penalty" : "own-impulse";
+  const bool has_own = std::find(names.begin(), names.end(), "own") != names.end();
+  if (has_own && std::find(names.begin(), names.end(), own) != names.end()) {
+    throw UsageError(std::string(flag) + ": \"own\" and \"" + own + "\" are one engine on " + scene.source +
+                     " (its solver.method is " + (own == "own-penalty" ? "penalty" : "impulse") + "): list one of them");
+  }
+}
+
+void check_distinct_settings(const std::vector<std::string>& words) {
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    const std::string key_i = words[i].substr(0, words[i].find('='));
+    for (std::size_t j = 0; j < i; ++j) {
+      if (words[j].substr(0, words[j].find('=')) == key_i) {
+        throw UsageError("--set: " + json_input::in_quotes(key_i) + " is given twice (" + json_input::in_quotes(words[j]) +
+                         " and " + json_input::in_quotes(words[i]) + "): give each setting once");
+      }
+    }
+  }
 }
 
 void check_iterations(int iterations, const RunLimits& limits) {
