@@ -79,6 +79,11 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
+    // CLI11 answers --version as soon as it meets it, so `--version junk` would pass silently.
+    if (argc != 2) {
+      std::cerr << "boxpile: error: $: --version takes no other argument (" << argc - 2 << " given)\n";
+      return kExitBadInput;
+    }
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     return parse_error(app, e);
