@@ -18,7 +18,7 @@ Scene flat_grid(long n) {
   const long side = static_cast<long>(std::ceil(std::sqrt(static_cast<double>(n))));
   for (long i = 0; i < n; ++i) {
     BodyDesc b;
-    b.name = "b" + std::to_string(i);
+    b.name = std::string("b").append(std::to_string(i));
     b.boxes = {BoxShape{Vec3(0.5, 0.5, 0.5), Vec3::Zero(), Quat::Identity()}};
     b.frame = {Vec3(2.0 * static_cast<double>(i % side), 2.0 * static_cast<double>(i / side), 0.5), Quat::Identity()};
     s.bodies.push_back(b);

@@ -73,7 +73,7 @@ std::vector<RigidBody> random_scene(int n, double spread, std::mt19937_64& rng) 
   Scene s;
   for (int i = 0; i < n; ++i) {
     BodyDesc b;
-    b.name = "b" + std::to_string(i);
+    b.name = std::string("b").append(std::to_string(i));
     b.boxes = {BoxShape{Vec3(size(rng), size(rng), size(rng)), Vec3::Zero(), Quat::Identity()}};
     if (i % 4 == 0) b.boxes.push_back(BoxShape{Vec3(size(rng), 0.05, 0.05), Vec3(0.3, 0, 0), Quat::UnitRandom()});
     b.frame = {Vec3(pos(rng), pos(rng), height(rng)), unit(rng) < 0.3 ? Quat::Identity() : Quat(Quat::UnitRandom())};

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <new>
 #include <string>
+#include <string_view>
 
 #include "boxpile/reference/ode_engine.hpp"
 #include "boxpile/sim/io/input_error.hpp"
@@ -74,6 +75,16 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
   ViewOptions view;
   add_view_command(app, view);
 
+  // CLI11 drops the empty names of a list (`--engines own,,ode` would run own and ode).
+  for (int i = 1; i + 1 < argc; ++i) {
+    const std::string_view flag = argv[i], list = argv[i + 1];
+    if (flag != "--engines" && flag != "--regimes") continue;
+    if (list.empty() || list.front() == ',' || list.back() == ',' || list.find(",,") != std::string_view::npos) {
+      std::cerr << "boxpile: error: " << flag << ": an empty name in " << boxpile::json_input::in_quotes(list)
+                << " (two commas together, or one at an end)\n";
+      return kExitBadInput;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
