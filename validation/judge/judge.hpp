@@ -40,8 +40,8 @@ inline constexpr double kFaceBiasAbsolute = 1e-6 / 0.95;  // times the largest h
 // coordinates and products, each rounded once, so its error is some tens of roundoffs of the
 // query's scale (its largest coordinate or half extent); the float32 tolerances allow 64 of them
 // (3.8e-6 of the scale). Measured: boxpile's own detector with its queries and answers rounded to
-// float32 (tests/scripts/collider_wrapper.py) errs by at most 0.56e-6 of the scale in depth and
-// points over 20,000 pairs of every regime (docs/conform.md), within the bound 7 times over.
+// float32 (tests/scripts/collider_wrapper.py) errs by 1e-7 to 2e-7 of the scale at most over
+// 5,000 pairs of every regime and the fixtures (docs/conform.md), 19 times below the bound.
 inline constexpr double kFloat32Roundoff = 0x1p-24;
 inline constexpr double kFloat32RoundingOps = 64;
 inline constexpr double kFloat32Relative = kFloat32RoundingOps * kFloat32Roundoff;
