@@ -75,10 +75,11 @@ void EtaLine::operator()(int done, int total) {
     std::snprintf(text, sizeof text, "%s: %d %s in %.1f s", label_.c_str(), done, unit_.c_str(), elapsed);
   } else {
     const double left = done > 0 ? elapsed * (total - done) / done : 0.0;
-    std::snprintf(text, sizeof text, "%s: %d of %d %s, %d%%, %.0f s left   ", label_.c_str(), done, total,
+    std::snprintf(text, sizeof text, "%s: %d of %d %s, %d%%, %.0f s left", label_.c_str(), done, total,
                   unit_.c_str(), 100 * done / total, left);
   }
-  std::cerr << (terminal_ ? "\r" : "") << text << (finished || !terminal_ ? "\n" : "");
+  // On a terminal: back to the line's start and erase it (ANSI "erase in line"), then the text.
+  std::cerr << (terminal_ ? "\r\033[K" : "") << text << (finished || !terminal_ ? "\n" : "");
   std::cerr.flush();
 }
 
