@@ -205,7 +205,9 @@ void write_md_counts(std::ostream& md, const CheckResult& r) {
   for (const FailureKind k : all_failure_kinds()) {
     md << "| " << failure_name(k) << " | " << r.count(k) << " | " << r.allowed(k) << " | " << r.saved(k) << " |\n";
   }
-  md << "\nThe worst " << r.keep << " failures of each kind (by error relative to the query's scale) are saved under "
+  md << '\n';
+  if (r.failing == 0) return;
+  md << "The worst " << r.keep << " failures of each kind (by error relative to the query's scale) are saved under "
         "`failures/` (" << r.failures.size() << " files); the others are counted here only.\n\n";
 }
 
