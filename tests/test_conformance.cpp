@@ -351,11 +351,19 @@ void report(const Reference& ref, const Tally& t) {
   WARN(s.str());
 }
 
+// Gates of this rate or more sit near the measured rate (MuJoCo's: measured over 20,000 samples),
+// not at twice it: a run of fewer samples (the sanitizer build's 200) then also allows three
+// binomial deviations of its own count, or a rate measured at 0.35 fails by chance.
+constexpr double kNearMeasuredGate = 0.05;
+
 void check_gates(const Tally& t, const MismatchGates& gates) {
   for (const auto& [m, n] : t.mismatches) {
     INFO(mismatch_name(m) << ": " << n << " of " << t.samples);
     const auto g = gates.find(m);
-    CHECK(n <= (g == gates.end() ? 0.0 : g->second) * t.samples);
+    const double rate = g == gates.end() ? 0.0 : g->second;
+    const double samples = static_cast<double>(t.samples);
+    const double slack = rate >= kNearMeasuredGate ? 3.0 * std::sqrt(rate * (1.0 - rate) * samples) : 0.0;
+    CHECK(n <= rate * samples + slack);
   }
   // Brute force never finds us wrong, nor both of us.
   CHECK(t.count(Verdict::ReferenceRight) == 0);
