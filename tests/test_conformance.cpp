@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "boxpile/tests/support/engine_scenes.hpp"
 #include "boxpile/reference/bullet/bullet_engine.hpp"
 #include "boxpile/reference/ode/ode_engine.hpp"
 #include "boxpile/sim/collision/box_box.hpp"
@@ -726,45 +727,11 @@ TEST_CASE("Bullet's edge-edge depth exceeds ours by exactly its fudge2 term", "[
 
 namespace {
 
-Scene empty_scene(const Effects& effects, bool ground) {
-  Scene scene;
-  scene.name = "test";
-  scene.effects = effects;
-  if (ground) scene.ground = HalfSpace{};
-  scene.time.dt = 1.0 / 240.0;
-  return scene;
-}
-
-BodyDesc unit_box(const std::string& name, const Vec3& position) {
-  BodyDesc b;
-  b.name = name;
-  b.mass = 1.0;
-  b.boxes = {BoxShape{}};
-  b.frame.position = position;
-  return b;
-}
-
-// The L of fixtures/scenes/compound_on_ground.json: its inertia has a product term (x z), so
-// Bullet needs principal axes, and its centre of mass is away from the body frame.
-BodyDesc l_compound(const std::string& name, const Vec3& position) {
-  BodyDesc b;
-  b.name = name;
-  b.mass = 3.5;
-  b.boxes = {BoxShape{Vec3(1.0, 0.5, 0.25), Vec3::Zero(), Quat::Identity()},
-             BoxShape{Vec3(0.25, 0.5, 0.75), Vec3(0.75, 0.0, 1.0), Quat::Identity()}};
-  b.frame.position = position;
-  return b;
-}
-
-void run(Engine& e, int steps) {
-  for (int k = 0; k < steps; ++k) e.step();
-}
-
-std::vector<BodyState> states_of(const Engine& e) {
-  std::vector<BodyState> s;
-  e.body_states(s);
-  return s;
-}
+using test::empty_scene;
+using test::l_compound;
+using test::run;
+using test::states_of;
+using test::unit_box;
 
 constexpr std::array<const char*, 2> kReferenceEngines = {"ode", "bullet"};
 
