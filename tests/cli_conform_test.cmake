@@ -1,6 +1,6 @@
 # `boxpile conform` and `boxpile contacts --serve|--format`, driven as a user would.
 # Run with -DBOXPILE=<the boxpile executable> -DFIXTURES=<fixtures dir> -DEXAMPLES=<examples dir>
-# -DWORK=<scratch dir>.
+# -DSCRIPTS=<tests/scripts> -DWORK=<scratch dir>.
 
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
@@ -75,7 +75,7 @@ foreach(k RANGE ${last})
     fail("failure ${k} of the face-axes collider: our detector judged wrong (${own_wrong}) or ODE not judged")
   endif()
 endforeach()
-expect_contains("${out}" "also wrong on these queries: own 0, ode")
+expect_contains("${out}" "also wrong on these queries: own 0 of ${failing}, ode")
 # A saved failure loads as a query, with the collider's answer beside ours.
 run_boxpile(0 contacts "${WORK}/py/${first_file}" --format json)
 string(JSON saved ERROR_VARIABLE no_saved GET "${out}" engines "collider (saved)")
@@ -107,3 +107,66 @@ if(EXISTS "${WORK}/dies" OR EXISTS "${WORK}/hangs" OR EXISTS "${WORK}/closes" OR
 endif()
 run_boxpile(2 conform --collider "${own_collider}" --regimes sideways --report "${WORK}/bad")
 run_boxpile(2 conform --collider "${own_collider}" --cases "${WORK}/nowhere" --report "${WORK}/bad")
+
+# --- conform: our detector behind tests/scripts/collider_wrapper.py, one change made on purpose ---
+set(wrapper "python3 ${SCRIPTS}/collider_wrapper.py")
+# Read and written in single precision: fails double precision's tolerances, passes float32's.
+set(float_collider "${wrapper} --float32 -- ${own_collider}")
+run_boxpile(1 conform --collider "${float_collider}" --samples 300 --report "${WORK}/f64")
+file(READ "${WORK}/f64/conform.json" report)
+string(JSON f64_failing GET "${report}" failing)
+if(f64_failing LESS 150)
+  fail("the float32 collider at --tolerance float64: ${f64_failing} of 323 failing, expected most")
+endif()
+run_boxpile(0 conform --collider "${float_collider}" --samples 300 --tolerance float32 --report "${WORK}/f32")
+file(READ "${WORK}/f32/conform.json" report)
+expect_json("${report}" 0 failing)
+expect_json("${report}" float32 settings tolerance)
+# Depths 10% short: named by their ratio, in every failing depth query.
+run_boxpile(1 conform --collider "${wrapper} --depth-scale 0.9 -- ${own_collider}" --samples 300 --report "${WORK}/short")
+expect_contains("${out}" "systematic: depth 0.9 of the truth in")
+file(READ "${WORK}/short/conform.json" report)
+expect_json("${report}" depth_ratio systematic 0 pattern)
+expect_match("${report}" "^0\\.(9$|8999999|9000000)" systematic 0 value)
+string(JSON depth_count GET "${report}" failures_by_kind depth count)
+expect_json("${report}" ${depth_count} systematic 0 count)
+file(READ "${WORK}/short/conform.md" md)
+expect_contains("${md}" "## Failures by regime")
+expect_contains("${md}" "## Failures by contact kind")
+# Edge-edge normals reversed: named for edge-edge.
+run_boxpile(1 conform --collider "${wrapper} --flip-edge-edge -- ${own_collider}" --samples 300 --report "${WORK}/flip")
+expect_contains("${out}" "systematic: edge-edge normals reversed in")
+file(READ "${WORK}/flip/conform.json" report)
+expect_json("${report}" reversed_normals systematic 0 pattern)
+expect_json("${report}" edge-edge systematic 0 contact)
+string(JSON by_contact GET "${report}" by_contact edge-edge failing)
+if(by_contact LESS 40)
+  fail("flipped edge-edge normals: ${by_contact} failing edge-edge queries, expected the edge_edge regime's 43 at least")
+endif()
+# --keep bounds the saved files; the counts stay whole.
+run_boxpile(1 conform --collider "${wrapper} --depth-scale 0.9 -- ${own_collider}" --samples 300 --keep 3
+            --progress --report "${WORK}/kept")
+file(GLOB kept "${WORK}/kept/failures/*.json")
+list(LENGTH kept kept_files)
+file(READ "${WORK}/kept/conform.json" report)
+# The 3 worst depth failures, and any kept as the worst of another kind that fails on depth too.
+string(JSON depth_saved GET "${report}" failures_by_kind depth saved)
+if(depth_saved LESS 3 OR depth_saved GREATER kept_files)
+  fail("--keep 3: ${depth_saved} depth failures saved, expected 3 and at most the ${kept_files} files")
+endif()
+expect_json("${report}" ${depth_count} failures_by_kind depth count)
+string(JSON saved GET "${report}" saved)
+if(kept_files GREATER 18 OR NOT kept_files EQUAL saved OR kept_files LESS 3)
+  fail("--keep 3: ${kept_files} files saved (the report says ${saved}), expected 3 to 18 (3 per failure kind)")
+endif()
+# --progress outside a terminal: a line per tenth and the time taken.
+expect_contains("${err}" "s left")
+expect_contains("${err}" "queries in")
+# Bad flags: exit 2, naming the flag, no report.
+foreach(bad 0 -1 nan inf 1e999 float16 "")
+  run_boxpile(2 conform --collider "${own_collider}" --samples 1 --tolerance "${bad}" --report "${WORK}/badtol")
+  expect_contains("${err}" "--tolerance")
+endforeach()
+run_boxpile(2 conform --collider "${own_collider}" --samples 1 --keep -1 --report "${WORK}/badtol")
+expect_contains("${err}" "--keep")
+expect_absent("${WORK}/badtol")

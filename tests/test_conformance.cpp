@@ -32,6 +32,7 @@
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/tests/support/geometry.hpp"
 #include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/known_biases.hpp"
 #include "boxpile/validation/detectors.hpp"
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/judge/judge.hpp"
@@ -51,11 +52,6 @@ constexpr double kDepthTolerance = kJudgeDepthTolerance;        // m
 constexpr double kRegionTolerance = kJudgeRegionTolerance;      // m
 constexpr double kUnitTolerance = kJudgeUnitTolerance;          // |n| - 1
 constexpr double kTouchingTolerance = kJudgeTouchingTolerance;  // m
-
-// Bullet's port of dBoxBox adds 1e-5 to every |C_ij| before the edge-axis tests (fudge2 in
-// btBoxBoxDetector.cpp), so its edge-edge depth exceeds the true one by
-// 1e-5 (a_i1 + a_i2 + b_j1 + b_j2) / |Ai x Bj|. ODE 0.16 has no such term (fixture crossing_edges).
-constexpr double kBulletEdgeFudge = 1e-5;
 
 bool is_face(FeatureKind k) { return k == FeatureKind::FaceA || k == FeatureKind::FaceB; }
 
@@ -265,14 +261,6 @@ std::string reference_invalid(const BoxPair& p, const Manifold& m, int max_point
   return "";
 }
 
-// Bullet's edge-edge depth minus ours, as its fudge2 term predicts it for our edge axis.
-double bullet_edge_fudge(const BoxPair& p, const SatResult& sat) {
-  const int i = sat.axis_a, j = sat.axis_b;
-  const double len = p.a.axes.col(i).cross(p.b.axes.col(j)).norm();
-  const double halves = p.a.half.sum() - p.a.half[i] + p.b.half.sum() - p.b.half[j];
-  return kBulletEdgeFudge * halves / len;
-}
-
 // The first mismatch between our set and the reference's, if any (Invalid is checked apart).
 std::optional<Mismatch> classify(const Reference& ref, const BoxPair& p, const Manifold& own,
                                  const SatResult& sat, const Manifold& theirs, Tally& t) {
@@ -292,7 +280,7 @@ std::optional<Mismatch> classify(const Reference& ref, const BoxPair& p, const M
 
   double depth_error = std::abs(*d.depth_difference);
   if (ref.merges_close_points && sat.kind == FeatureKind::EdgeEdge) {
-    const double fudge = bullet_edge_fudge(p, sat);
+    const double fudge = bullet_edge_fudge(p.a, p.b, sat.normal);  // validation/known_biases.hpp
     depth_error = std::abs(*d.depth_difference - fudge);
     if (depth_error <= kDepthTolerance) ++t.edge_fudge;
   }

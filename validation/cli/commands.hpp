@@ -40,9 +40,9 @@ void add_contacts_command(CLI::App& app, ContactsOptions& options);
 int run_contacts(const ContactsOptions& options);
 
 // `boxpile conform --collider CMD [--samples N] [--seed S] [--cases DIR] [--regimes LIST]
-// [--timeout S] --report DIR`: judges an outside collider through the line protocol
-// (docs/conform.md). Exit 0 within the gates, 1 not, 2 on bad input or a collider that dies,
-// hangs or answers garbage.
+// [--timeout S] [--tolerance float32|float64|VALUE] [--keep N] [--progress] --report DIR`: judges
+// an outside collider through the line protocol (docs/conform.md). Exit 0 within the gates, 1 not,
+// 2 on bad input or a collider that dies, hangs or answers garbage.
 struct ConformOptions {
   std::string collider;
   int samples = 1000;
@@ -51,6 +51,9 @@ struct ConformOptions {
   std::vector<std::string> regimes;  // empty: all
   double timeout = 10.0;             // s per answer
   bool no_swap = false;
+  std::string tolerance = "float64"; // float32, float64 or a relative tolerance
+  int keep = 0;                      // failures saved per kind; add_conform_command sets kDefaultKeep
+  bool progress = false;             // progress on stderr even when it is no terminal
   std::string report;
 };
 void add_conform_command(CLI::App& app, ConformOptions& options);

@@ -1,7 +1,11 @@
+#include <array>
+#include <charconv>
 #include <chrono>
 #include <cmath>
+#include <variant>
 
 #include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/cli/report_command.hpp"
 #include "boxpile/validation/collider_process.hpp"
 #include "boxpile/validation/conform_report.hpp"
@@ -15,6 +19,33 @@ namespace {
 constexpr const char* kNoCases = "none";
 // More pairs than a day of a slow collider's answers is a typo.
 constexpr int kMaxSamples = 100'000'000;
+
+// More failures kept whole per kind than anyone reads is a typo.
+constexpr int kMaxKeep = 1'000'000;
+
+// The named tolerances of --tolerance; any other value is a relative tolerance.
+struct NamedTolerance {
+  const char* name;
+  JudgeTolerances (*tolerances)();
+};
+JudgeTolerances double_precision() { return {}; }
+constexpr std::array<NamedTolerance, 2> kNamedTolerances = {{{"float64", &double_precision},
+                                                             {"float32", &float32_tolerances}}};
+
+// The tolerances --tolerance names, or an error naming the flag.
+std::variant<JudgeTolerances, std::string> parse_tolerance(const std::string& text) {
+  for (const NamedTolerance& t : kNamedTolerances) {
+    if (text == t.name) return t.tolerances();
+  }
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value) || value <= 0.0) {
+    return "--tolerance: \"" + text + "\" is neither float32, float64 nor a positive finite number";
+  }
+  JudgeTolerances t;
+  t.relative = value;
+  return t;
+}
 
 std::vector<std::string> regime_names() {
   std::vector<std::string> names;
@@ -38,6 +69,8 @@ CheckOptions check_options(const ConformOptions& options, const std::string& cas
   }
   if (!cases.empty()) check.cases = load_cases(cases);
   check.swap = !options.no_swap;
+  check.keep = options.keep;
+  check.tolerances = std::get<JudgeTolerances>(parse_tolerance(options.tolerance));
   return check;
 }
 
@@ -64,6 +97,22 @@ void add_conform_command(CLI::App& app, ConformOptions& options) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_flag("--no-swap", options.no_swap, "Do not ask each box-box query again with A and B swapped");
+  cmd->add_option("--tolerance", options.tolerance,
+                  "float64 (1e-9 m on depth, 1e-7 m on points, 1e-12 on |n| - 1: a double-precision collider), "
+                  "float32 (each at least 64 single-precision roundoffs, 3.8e-6, of the query's scale: its "
+                  "largest coordinate or half extent; a depth is a difference of sums of some tens of rounded "
+                  "numbers), or a number: each tolerance at least that fraction of the query's scale")
+      ->check([](const std::string& text) {
+        const auto parsed = parse_tolerance(text);
+        return std::holds_alternative<std::string>(parsed) ? std::get<std::string>(parsed) : std::string();
+      })
+      ->capture_default_str();
+  options.keep = kDefaultKeep;
+  cmd->add_option("--keep", options.keep, "Failures saved whole per failure kind, the worst first (the rest are counted)")
+      ->check(CLI::Range(0, kMaxKeep))
+      ->capture_default_str();
+  cmd->add_flag("--progress", options.progress,
+                "Show progress and the time left on stderr even when it is not a terminal (on a terminal it is shown anyway)");
   add_report_option(*cmd, options.report, "conform")->required();
 }
 
@@ -75,13 +124,13 @@ int run_conform_command(const ConformOptions& options) {
   // Before the run: a report directory that cannot be written fails now.
   ReportDirectory dir(options.report, {}, kConformJson);
 
-  const auto start = std::chrono::steady_clock::now();
+  run.tolerance = options.tolerance;
+  EtaLine progress("conform", "queries", options.progress);
+  run.options.progress = [&progress](int done, int total) { progress(done, total); };
   {
     ColliderProcess process(options.collider, std::chrono::milliseconds(std::lround(options.timeout * 1000.0)));
-    run.result = check_collider([&process](const ContactQuery& q) { return process.ask(q); }, run.options);
+    run_conform(run, [&process](const ContactQuery& q) { return process.ask(q); });
   }
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  judge_detectors(run);
 
   write_conform_report(run, dir.staging());
   finish_report(dir, {}, conform_summary(run), kConformMarkdown);

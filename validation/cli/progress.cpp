@@ -46,4 +46,41 @@ void ProgressPrinter::operator()(const RunProgress& p) {
   line_.draw(line, done);
 }
 
+// A terminal line redrawn more often than this only flickers.
+constexpr std::chrono::milliseconds kEtaRedraw{200};
+
+EtaLine::EtaLine(std::string label, std::string unit, bool forced)
+    : label_(std::move(label)),
+      unit_(std::move(unit)),
+      terminal_(isatty(STDERR_FILENO) == 1),
+      shown_(terminal_ || forced),
+      start_(std::chrono::steady_clock::now()),
+      drawn_(start_) {}
+
+void EtaLine::operator()(int done, int total) {
+  if (!shown_ || total <= 0) return;
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point now = Clock::now();
+  const bool finished = done >= total;
+  const int tenth = 10 * done / total;
+  if (!finished) {
+    if (terminal_ && now - drawn_ < kEtaRedraw) return;
+    if (!terminal_ && tenth == tenth_) return;
+  }
+  drawn_ = now;
+  tenth_ = tenth;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  char text[200];
+  if (finished) {
+    std::snprintf(text, sizeof text, "%s: %d %s in %.1f s", label_.c_str(), done, unit_.c_str(), elapsed);
+  } else {
+    const double left = done > 0 ? elapsed * (total - done) / done : 0.0;
+    std::snprintf(text, sizeof text, "%s: %d of %d %s, %d%%, %.0f s left", label_.c_str(), done, total,
+                  unit_.c_str(), 100 * done / total, left);
+  }
+  // On a terminal: back to the line's start and erase it (ANSI "erase in line"), then the text.
+  std::cerr << (terminal_ ? "\r\033[K" : "") << text << (finished || !terminal_ ? "\n" : "");
+  std::cerr.flush();
+}
+
 }  // namespace boxpile::cli

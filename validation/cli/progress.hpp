@@ -2,6 +2,7 @@
 #pragma once
 
 #include <chrono>
+#include <string>
 #include <string_view>
 
 namespace boxpile::cli {
@@ -40,6 +41,23 @@ class ProgressPrinter {
   StatusLine line_;
   int timed_index_ = -1;  // the run start_ belongs to
   std::chrono::steady_clock::time_point start_;
+};
+
+// Work counted in items, with the time left estimated from the pace so far: "conform: 4512 of
+// 20023 queries, 22%, 9 s left" on stderr. Drawn only on a terminal, or when asked for
+// (`forced`): in place on a terminal, at most every kEtaRedraw; elsewhere a line per tenth of the
+// work, so that a log stays short. The last call (done == total) ends the line with the time taken.
+class EtaLine {
+ public:
+  EtaLine(std::string label, std::string unit, bool forced);
+  void operator()(int done, int total);
+
+ private:
+  std::string label_, unit_;
+  bool terminal_;
+  bool shown_;
+  int tenth_ = -1;
+  std::chrono::steady_clock::time_point start_, drawn_;
 };
 
 }  // namespace boxpile::cli

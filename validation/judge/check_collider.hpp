@@ -17,6 +17,7 @@
 #include "boxpile/sim/io/query_loader.hpp"
 #include "boxpile/validation/judge/judge.hpp"
 #include "boxpile/validation/judge/pose_sampler.hpp"
+#include "boxpile/validation/judge/symptom.hpp"
 
 namespace boxpile {
 
@@ -26,6 +27,12 @@ using Collider = std::function<Manifold(const ContactQuery&)>;
 // Allowed failures per kind, as a fraction of the judged queries; a kind not listed allows none.
 using Gates = std::map<FailureKind, double>;
 
+// Failures kept whole (query, answers, findings) per failure kind, the worst first: enough to
+// look at, few enough that a collider wrong everywhere does not fill a disk. The rest are counted.
+inline constexpr int kDefaultKeep = 100;
+
+struct FailedCase;
+
 struct CheckOptions {
   int samples = 1000;         // random pairs, drawn from the regimes in turn
   std::uint64_t seed = 1;     // the same seed gives the same pairs
@@ -34,6 +41,11 @@ struct CheckOptions {
   bool swap = true;           // also ask each box-box query with A and B swapped
   JudgeTolerances tolerances;
   Gates gates;
+  int keep = kDefaultKeep;  // failures kept whole per failure kind (CheckResult::failures)
+  // Called after each judged query with the queries done and the total, if set.
+  std::function<void(int done, int total)> progress;
+  // Called with every failure as it is found (kept or not), if set.
+  std::function<void(const FailedCase&)> on_failure;
 };
 
 // A query whose answer the judge found wrong.
@@ -44,22 +56,48 @@ struct FailedCase {
   Manifold answer;
   std::optional<Manifold> swapped;  // the answer for (B, A)
   std::vector<Finding> findings;
+  int index = 0;         // the query's place in the run (cases first, then the samples)
+  double scale = 1.0;    // query_scale(), m: errors in metres are ranked relative to it
+  Symptom symptom;
+
+  // The largest error of kind k relative to the query (lengths over the scale), -1 if none.
+  double relative_error(FailureKind k) const;
+};
+
+// Queries and failures of one part of a run: a regime, or a contact kind.
+struct QueryTally {
+  int queries = 0;
+  int answered = 0;  // queries with overlapping (or touching) boxes answered with a contact
+  int failing = 0;
+  int reversed = 0;  // failing with the deepest normal reversed
+  std::map<FailureKind, int> counts;
+
+  int count(FailureKind k) const;
 };
 
 struct CheckResult {
   int queries = 0;  // judged queries (a swapped ask belongs to its query)
   int touching = 0;  // queries whose boxes truly overlap by more than the touching tolerance
   int apart = 0;     // queries whose boxes are truly apart by more than the touching tolerance
+  int failing = 0;   // queries with any finding
   std::map<FailureKind, int> counts;  // queries failing each kind
+  // The worst `keep` failures of each kind (relative_error()), in query order; the rest are
+  // counted in `counts`, the tallies and `symptoms` only.
   std::vector<FailedCase> failures;
+  std::vector<Symptom> symptoms;  // of every failure, in query order
+  std::vector<std::pair<std::string, QueryTally>> by_regime;  // "case" first, then the regimes in their order
+  std::map<ContactKind, QueryTally> by_contact;
   Gates gates;
+  int keep = kDefaultKeep;
 
   int count(FailureKind k) const;
   // The failures of kind k allowed by the gate.
   double allowed(FailureKind k) const;
   bool within_gates() const;
-  // The failed case with the largest error of kind k, if any.
+  // The kept failed case with the largest relative error of kind k, if any.
   const FailedCase* worst(FailureKind k) const;
+  // How many failures of kind k are kept whole in `failures`.
+  int saved(FailureKind k) const;
 };
 
 CheckResult check_collider(const Collider& collider, const CheckOptions& options = {});

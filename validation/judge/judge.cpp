@@ -55,7 +55,8 @@ std::optional<Finding> normals(const OrientedBox& a, const OrientedBox& b, const
   for (const Contact& c : answer) {
     const double unit_error = std::abs(c.normal.norm() - 1.0);
     if (unit_error > tol.unit) {
-      return Finding{FailureKind::Normal, unit_error, printed("normal of length %.17g", c.normal.norm())};
+      return Finding{FailureKind::Normal, unit_error, printed("normal of length %.17g", c.normal.norm()),
+                     ErrorUnit::Ratio};
     }
     const NormalJudgement j = judge_normal(a, b, c.normal, tol);
     if (!j.acceptable) {
@@ -111,7 +112,7 @@ std::optional<Finding> swap_symmetry(const OrientedBox& a, const OrientedBox& b,
                             judge_normal(a, b, -backward.normal, tol).acceptable;
     if (both_right) return std::nullopt;
     return Finding{FailureKind::Swap, angle,
-                   printed("the (B, A) normal is %.3g rad from the reversed (A, B) normal", angle)};
+                   printed("the (B, A) normal is %.3g rad from the reversed (A, B) normal", angle), ErrorUnit::Radian};
   }
   const double depth_error = std::abs(forward.depth - backward.depth);
   if (depth_error > tol.depth) {
@@ -136,7 +137,35 @@ void add(std::vector<Finding>& out, std::optional<Finding> f) {
 std::span<const FailureKind> all_failure_kinds() { return kKinds; }
 std::string_view failure_name(FailureKind k) { return kKindNames[static_cast<std::size_t>(k)]; }
 
-NormalJudgement judge_normal(const OrientedBox& a, const OrientedBox& b, const Vec3& n, const JudgeTolerances& tol) {
+JudgeTolerances JudgeTolerances::at_scale(double scale) const {
+  JudgeTolerances t = *this;
+  const double length = relative * scale;
+  t.normal = std::max(normal, relative);
+  t.unit = std::max(unit, relative);
+  t.depth = std::max(depth, length);
+  t.region = std::max(region, length);
+  t.touching = std::max(touching, length);
+  t.relative = 0.0;
+  return t;
+}
+
+JudgeTolerances float32_tolerances() {
+  JudgeTolerances t;
+  t.relative = kFloat32Relative;
+  return t;
+}
+
+double query_scale(const OrientedBox& a, const OrientedBox& b) {
+  return std::max({a.center.cwiseAbs().maxCoeff(), b.center.cwiseAbs().maxCoeff(), a.half.maxCoeff(),
+                   b.half.maxCoeff()});
+}
+
+double query_scale(const OrientedBox& a, const HalfSpace& plane) {
+  return std::max({a.center.cwiseAbs().maxCoeff(), a.half.maxCoeff(), std::abs(plane.offset)});
+}
+
+NormalJudgement judge_normal(const OrientedBox& a, const OrientedBox& b, const Vec3& n, const JudgeTolerances& given) {
+  const JudgeTolerances tol = given.at_scale(query_scale(a, b));
   const std::vector<Vec3> axes = candidate_axes(a, b);
   const double least = least_penetration(a, b, axes);
   const double scale = std::max(a.half.maxCoeff(), b.half.maxCoeff());
@@ -155,7 +184,8 @@ double true_depth(const OrientedBox& a, const HalfSpace& plane) {
 }
 
 std::vector<Finding> judge_box_box(const OrientedBox& a, const OrientedBox& b, const Manifold& answer,
-                                   const std::optional<Manifold>& swapped, const JudgeTolerances& tol) {
+                                   const std::optional<Manifold>& swapped, const JudgeTolerances& given) {
+  const JudgeTolerances tol = given.at_scale(query_scale(a, b));
   std::vector<Finding> findings;
   const double truth = true_depth(a, b);
   add(findings, presence(truth, answer, tol));
@@ -171,7 +201,8 @@ std::vector<Finding> judge_box_box(const OrientedBox& a, const OrientedBox& b, c
 }
 
 std::vector<Finding> judge_box_plane(const OrientedBox& a, const HalfSpace& plane, const Manifold& answer,
-                                     const JudgeTolerances& tol) {
+                                     const JudgeTolerances& given) {
+  const JudgeTolerances tol = given.at_scale(query_scale(a, plane));
   std::vector<Finding> findings;
   const double truth = true_depth(a, plane);
   add(findings, presence(truth, answer, tol));
@@ -182,7 +213,8 @@ std::vector<Finding> judge_box_plane(const OrientedBox& a, const HalfSpace& plan
     if (angle > tol.normal || unit_error > tol.unit) {
       findings.push_back({FailureKind::Normal, std::max(angle, unit_error),
                           printed("normal %.3g rad from the plane's normal, length %.17g", angle,
-                                      c.normal.norm())});
+                                      c.normal.norm()),
+                          ErrorUnit::Radian});
       break;
     }
   }

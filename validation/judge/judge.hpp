@@ -35,15 +35,39 @@ inline constexpr double kJudgeTouchingTolerance = 1e-9;  // m
 inline constexpr double kFaceBiasRelative = 1.0 / 0.95 - 1.0;
 inline constexpr double kFaceBiasAbsolute = 1e-6 / 0.95;  // times the largest half extent
 
+// A single-precision collider rounds every number it holds to 2^-24 of its size (the unit
+// roundoff of IEEE binary32). A depth or a point is a difference of sums of some tens of
+// coordinates and products, each rounded once, so its error is some tens of roundoffs of the
+// query's scale (its largest coordinate or half extent); the float32 tolerances allow 64 of them
+// (3.8e-6 of the scale). Measured: boxpile's own detector with its queries and answers rounded to
+// float32 (tests/scripts/collider_wrapper.py) errs by 1e-7 to 2e-7 of the scale at most over
+// 5,000 pairs of every regime and the fixtures (docs/conform.md), 19 times below the bound.
+inline constexpr double kFloat32Roundoff = 0x1p-24;
+inline constexpr double kFloat32RoundingOps = 64;
+inline constexpr double kFloat32Relative = kFloat32RoundingOps * kFloat32Roundoff;
+
 // Tolerances a judge applies; the defaults suit a double-precision collider of boxes near unit
-// size. A float collider needs looser ones (say 1e-5 for depth, region and unit).
+// size. `relative` scales them to the query: each length tolerance is at least `relative` times
+// the query's scale (query_scale()), the unit and angle tolerances at least `relative` itself;
+// float32_tolerances() suits a single-precision collider.
 struct JudgeTolerances {
   double normal = kJudgeNormalTolerance;      // rad
   double depth = kJudgeDepthTolerance;        // m
   double region = kJudgeRegionTolerance;      // m
   double unit = kJudgeUnitTolerance;          // |n| - 1
   double touching = kJudgeTouchingTolerance;  // m
+  double relative = 0.0;                      // of the query's scale
+
+  // The tolerances for a query of this scale (m): `relative` applied, `relative` itself 0.
+  JudgeTolerances at_scale(double scale) const;
 };
+// The tolerances of a collider computing in single precision.
+JudgeTolerances float32_tolerances();
+
+// The size of the numbers a collider handles for this query, m: the largest coordinate of a box's
+// centre, the largest half extent, the plane's offset.
+double query_scale(const OrientedBox& a, const OrientedBox& b);
+double query_scale(const OrientedBox& a, const HalfSpace& plane);
 
 // --- what can be wrong -------------------------------------------------------------------------
 enum class FailureKind {
@@ -57,11 +81,15 @@ enum class FailureKind {
 std::span<const FailureKind> all_failure_kinds();
 std::string_view failure_name(FailureKind k);
 
-// One failed criterion: which, by how much (m, or rad for a normal's angle), and a sentence.
+// What a finding's error is measured in: a length, an angle, or a pure number (|n| - 1).
+enum class ErrorUnit { Metre, Radian, Ratio };
+
+// One failed criterion: which, by how much (in `unit`), and a sentence.
 struct Finding {
   FailureKind kind;
   double error = 0.0;
   std::string why;
+  ErrorUnit unit = ErrorUnit::Metre;
 };
 
 // --- the brute-force quantities of one pair -----------------------------------------------------
