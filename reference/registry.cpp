@@ -18,9 +18,9 @@ namespace boxpile {
 using nlohmann::json;
 
 Manifold DetectorInfo::detect(const ContactQuery& q, const DetectOptions& options) const {
-  const OrientedBox a = OrientedBox::from(q.a.pose, q.a.half_extents);
+  const OrientedBox a = q.a.box();
   if (q.plane) return box_plane(a, *q.plane, options);
-  return box_box(a, OrientedBox::from(q.b->pose, q.b->half_extents), options);
+  return box_box(a, q.b->box(), options);
 }
 
 namespace {

@@ -7,19 +7,13 @@
 namespace boxpile {
 namespace {
 
-OrientedBox box_of(const QueryBox& q) { return OrientedBox::from(q.pose, q.half_extents); }
-
-const Contact& deepest(const Manifold& m) {
-  return *std::max_element(m.begin(), m.end(), [](const Contact& x, const Contact& y) { return x.depth < y.depth; });
-}
-
 // A normal within this of an edge pair's cross product is that pair's direction (Bullet's
 // normal is the normalised cross product itself, to rounding).
 constexpr double kEdgeDirectionCos = 1.0 - 1e-9;
 
 double edge_fudge_of(const ContactQuery& q, const Manifold& m) {
   if (!q.b || m.empty()) return 0.0;
-  return bullet_edge_fudge(box_of(q.a), box_of(*q.b), deepest(m).normal.normalized());
+  return bullet_edge_fudge(q.a.box(), q.b->box(), m.deepest().normal.normalized());
 }
 
 // A normal along a face axis of the box (ODE's and Bullet's face normals are axes to rounding).
@@ -30,7 +24,7 @@ bool along_an_axis(const OrientedBox& box, const Vec3& n) {
 // A swap finding on the points alone: the deepest depths of both answers agree.
 bool swap_of_points(const JudgedAnswer& j) {
   return j.finding.kind == FailureKind::Swap && j.finding.unit == ErrorUnit::Metre && j.swapped && !j.answer.empty() &&
-         !j.swapped->empty() && std::abs(deepest(j.answer).depth - deepest(*j.swapped).depth) <= j.tol.depth;
+         !j.swapped->empty() && std::abs(j.answer.deepest().depth - j.swapped->deepest().depth) <= j.tol.depth;
 }
 
 // --- ODE and Bullet (Bullet's box-box is a port of ODE's) ----------------------------------------
@@ -40,7 +34,7 @@ bool swap_of_points(const JudgedAnswer& j) {
 bool edge_point_off_the_edges(const JudgedAnswer& j) {
   if (j.finding.kind != FailureKind::Outside || !j.query.b || j.answer.size() != 1) return false;
   const Vec3 n = j.answer[0].normal.normalized();
-  return !along_an_axis(box_of(j.query.a), n) && !along_an_axis(box_of(*j.query.b), n);
+  return !along_an_axis(j.query.a.box(), n) && !along_an_axis(j.query.b->box(), n);
 }
 
 // --- ODE -------------------------------------------------------------------------------------
@@ -54,9 +48,9 @@ constexpr double kOdeParallelMove = 2.1;  // times the deepest depth
 
 bool ode_parallel_face_points(const JudgedAnswer& j) {
   if (!swap_of_points(j)) return false;
-  const Vec3 n = deepest(j.answer).normal.normalized();
-  return along_an_axis(box_of(j.query.a), n) && along_an_axis(box_of(*j.query.b), n) &&
-         j.finding.error <= kOdeParallelMove * deepest(j.answer).depth + j.tol.region;
+  const Vec3 n = j.answer.deepest().normal.normalized();
+  return along_an_axis(j.query.a.box(), n) && along_an_axis(j.query.b->box(), n) &&
+         j.finding.error <= kOdeParallelMove * j.answer.deepest().depth + j.tol.region;
 }
 
 // --- Bullet ----------------------------------------------------------------------------------
@@ -66,8 +60,8 @@ bool ode_parallel_face_points(const JudgedAnswer& j) {
 bool bullet_culled_face_points(const JudgedAnswer& j) {
   if (!swap_of_points(j)) return false;
   constexpr int kBulletManifoldPoints = 4;
-  const Vec3 n = deepest(j.answer).normal.normalized();
-  const bool face = along_an_axis(box_of(j.query.a), n) || along_an_axis(box_of(*j.query.b), n);
+  const Vec3 n = j.answer.deepest().normal.normalized();
+  const bool face = along_an_axis(j.query.a.box(), n) || along_an_axis(j.query.b->box(), n);
   return face && (j.answer.size() == kBulletManifoldPoints || j.swapped->size() == kBulletManifoldPoints);
 }
 

@@ -7,6 +7,7 @@
 //   feature   an id that stays the same while the same features touch.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cassert>
 #include <cstdint>
@@ -78,6 +79,11 @@ class Manifold {
   const Contact* end() const { return points_.data() + count_; }
   Contact* begin() { return points_.data(); }
   Contact* end() { return points_.data() + count_; }
+  // The point of greatest depth (the manifold must not be empty).
+  const Contact& deepest() const {
+    assert(count_ > 0);
+    return *std::max_element(begin(), end(), [](const Contact& x, const Contact& y) { return x.depth < y.depth; });
+  }
 
  private:
   std::array<Contact, kMaxManifoldPoints> points_{};

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "boxpile/sim/collision/box.hpp"
 #include "boxpile/sim/collision/contact.hpp"
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/math.hpp"
@@ -16,6 +17,8 @@ namespace boxpile {
 struct QueryBox {
   Vec3 half_extents = Vec3::Constant(0.5);
   Pose pose;
+
+  OrientedBox box() const { return OrientedBox::from(pose, half_extents); }
 };
 
 // A contact set some detector gave for the query, kept in the query file (`boxpile conform`

@@ -8,6 +8,7 @@
 #include <limits>
 #include <cstdint>
 #include <cstdlib>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -42,6 +43,18 @@ inline int test_long_run_steps(int fallback) {
   if (!s) return fallback;
   const int steps = std::atoi(s);
   if (steps <= 0) throw std::invalid_argument(std::string("BOXPILE_LONG_RUN_STEPS must be a positive integer, got ") + s);
+  return steps;
+}
+
+// Steps of each catalogue and example scene's run: BOXPILE_SCENE_STEPS runs only the first ones
+// where every step costs tens of times more (the sanitizer stage of .ci/run, where the whole runs
+// were half of the stage's time; the release stage runs every scene in full and holds the
+// verdicts). None when unset; a value that is no positive integer is an error.
+inline std::optional<long> test_scene_steps() {
+  const char* s = std::getenv("BOXPILE_SCENE_STEPS");
+  if (!s) return std::nullopt;
+  const long steps = std::atol(s);
+  if (steps <= 0) throw std::invalid_argument(std::string("BOXPILE_SCENE_STEPS must be a positive integer, got ") + s);
   return steps;
 }
 

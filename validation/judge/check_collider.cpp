@@ -6,8 +6,6 @@
 namespace boxpile {
 namespace {
 
-OrientedBox box_of(const QueryBox& q) { return OrientedBox::from(q.pose, q.half_extents); }
-
 QueryBox query_box(const OrientedBox& b) {
   QueryBox q;
   q.half_extents = b.half;
@@ -17,13 +15,13 @@ QueryBox query_box(const OrientedBox& b) {
 }
 
 double query_depth(const ContactQuery& q) {
-  const OrientedBox a = box_of(q.a);
-  return q.b ? true_depth(a, box_of(*q.b)) : true_depth(a, *q.plane);
+  const OrientedBox a = q.a.box();
+  return q.b ? true_depth(a, q.b->box()) : true_depth(a, *q.plane);
 }
 
 double scale_of(const ContactQuery& q) {
-  const OrientedBox a = box_of(q.a);
-  return q.b ? query_scale(a, box_of(*q.b)) : query_scale(a, *q.plane);
+  const OrientedBox a = q.a.box();
+  return q.b ? query_scale(a, q.b->box()) : query_scale(a, *q.plane);
 }
 
 QueryTally& tally_of(std::vector<std::pair<std::string, QueryTally>>& tallies, const std::string& name) {
@@ -172,9 +170,9 @@ ContactQuery swapped_query(const ContactQuery& query) {
 
 std::vector<Finding> judge_query(const ContactQuery& query, const Manifold& answer,
                                  const std::optional<Manifold>& swapped, const JudgeTolerances& tol) {
-  const OrientedBox a = box_of(query.a);
+  const OrientedBox a = query.a.box();
   if (query.plane) return judge_box_plane(a, *query.plane, answer, tol);
-  return judge_box_box(a, box_of(*query.b), answer, swapped, tol);
+  return judge_box_box(a, query.b->box(), answer, swapped, tol);
 }
 
 std::vector<ContactQuery> load_cases(const std::string& folder) {

@@ -8,9 +8,9 @@
 namespace boxpile {
 namespace {
 
-constexpr std::array<ContactKind, 6> kKinds = {ContactKind::FaceFace, ContactKind::FaceEdge, ContactKind::Vertex,
+constexpr std::array<ContactKind, 6> kContactKinds = {ContactKind::FaceFace, ContactKind::FaceEdge, ContactKind::Vertex,
                                                ContactKind::EdgeEdge, ContactKind::BoxPlane, ContactKind::Apart};
-constexpr std::array<std::string_view, 6> kKindNames = {"face-face", "face-edge", "vertex",
+constexpr std::array<std::string_view, 6> kContactKindNames = {"face-face", "face-edge", "vertex",
                                                         "edge-edge", "box-plane", "apart"};
 
 // The vertices of `incident` below the face of `reference` whose outward normal is n: deeper than
@@ -26,8 +26,8 @@ int vertices_below(const OrientedBox& reference, const OrientedBox& incident, co
 
 }  // namespace
 
-std::span<const ContactKind> all_contact_kinds() { return kKinds; }
-std::string_view contact_kind_name(ContactKind k) { return kKindNames[static_cast<std::size_t>(k)]; }
+std::span<const ContactKind> all_contact_kinds() { return kContactKinds; }
+std::string_view contact_kind_name(ContactKind k) { return kContactKindNames[static_cast<std::size_t>(k)]; }
 
 ContactKind contact_kind(const OrientedBox& a, const OrientedBox& b, const JudgeTolerances& given) {
   const JudgeTolerances tol = given.at_scale(query_scale(a, b));

@@ -7,29 +7,17 @@
 #include <limits>
 
 #include "boxpile/validation/judge/brute_force.hpp"
+#include "boxpile/validation/judge/printed.hpp"
 
 namespace boxpile {
 namespace {
 
-constexpr std::array<FailureKind, 6> kKinds = {FailureKind::Missed, FailureKind::Phantom, FailureKind::Normal,
+constexpr std::array<FailureKind, 6> kFailureKinds = {FailureKind::Missed, FailureKind::Phantom, FailureKind::Normal,
                                                FailureKind::Depth,  FailureKind::Outside, FailureKind::Swap};
-constexpr std::array<std::string_view, 6> kKindNames = {"missed", "phantom", "normal", "depth", "outside", "swap"};
-
-// printf into a string (the messages of findings).
-template <class... Args>
-std::string printed(const char* format, Args... args) {
-  const int n = std::snprintf(nullptr, 0, format, args...);
-  std::string s(static_cast<std::size_t>(n), '\0');
-  std::snprintf(s.data(), s.size() + 1, format, args...);
-  return s;
-}
+constexpr std::array<std::string_view, 6> kFailureNames = {"missed", "phantom", "normal", "depth", "outside", "swap"};
 
 double angle_between(const Vec3& u, const Vec3& v) {
   return std::atan2(u.cross(v).norm(), u.dot(v));
-}
-
-const Contact& deepest(const Manifold& m) {
-  return *std::max_element(m.begin(), m.end(), [](const Contact& x, const Contact& y) { return x.depth < y.depth; });
 }
 
 // --- the stages of judging one box-box answer --------------------------------------------------
@@ -40,7 +28,7 @@ std::optional<Finding> presence(double depth, const Manifold& answer, const Judg
     return Finding{FailureKind::Missed, depth, printed("no contact, but the boxes overlap by %.3g m", depth)};
   }
   if (!answer.empty() && depth < -tol.touching) {
-    const double claimed = deepest(answer).depth;
+    const double claimed = answer.deepest().depth;
     if (claimed > -tol.touching) {
       return Finding{FailureKind::Phantom, claimed - depth,
                      printed("contact of depth %.3g m, but the boxes are %.3g m apart", claimed, -depth)};
@@ -72,7 +60,7 @@ std::optional<Finding> normals(const OrientedBox& a, const OrientedBox& b, const
 // The deepest depth is the penetration along that contact's normal.
 std::optional<Finding> depth(const OrientedBox& a, const OrientedBox& b, const Manifold& answer,
                              const JudgeTolerances& tol) {
-  const Contact& d = deepest(answer);
+  const Contact& d = answer.deepest();
   const double truth = directional_penetration(a, b, d.normal.normalized(), candidate_axes(a, b));
   const double error = std::abs(d.depth - truth);
   if (error <= tol.depth) return std::nullopt;
@@ -104,8 +92,8 @@ std::optional<Finding> swap_symmetry(const OrientedBox& a, const OrientedBox& b,
                    printed("%d points for (A, B), %d for (B, A)", answer.size(), swapped.size())};
   }
   if (answer.empty()) return std::nullopt;
-  const Contact& forward = deepest(answer);
-  const Contact& backward = deepest(swapped);
+  const Contact& forward = answer.deepest();
+  const Contact& backward = swapped.deepest();
   const double angle = angle_between(forward.normal, -backward.normal);
   if (angle > tol.normal) {
     const bool both_right = judge_normal(a, b, forward.normal, tol).acceptable &&
@@ -134,8 +122,8 @@ void add(std::vector<Finding>& out, std::optional<Finding> f) {
 
 }  // namespace
 
-std::span<const FailureKind> all_failure_kinds() { return kKinds; }
-std::string_view failure_name(FailureKind k) { return kKindNames[static_cast<std::size_t>(k)]; }
+std::span<const FailureKind> all_failure_kinds() { return kFailureKinds; }
+std::string_view failure_name(FailureKind k) { return kFailureNames[static_cast<std::size_t>(k)]; }
 
 JudgeTolerances JudgeTolerances::at_scale(double scale) const {
   JudgeTolerances t = *this;
@@ -218,11 +206,11 @@ std::vector<Finding> judge_box_plane(const OrientedBox& a, const HalfSpace& plan
       break;
     }
   }
-  const double depth_error = std::abs(deepest(answer).depth - truth);
+  const double depth_error = std::abs(answer.deepest().depth - truth);
   if (depth_error > tol.depth) {
     findings.push_back({FailureKind::Depth, depth_error,
                         printed("deepest depth %.9g m, the deepest vertex is %.9g m below the plane",
-                                    deepest(answer).depth, truth)});
+                                    answer.deepest().depth, truth)});
   }
   add(findings, inside(a, "A", answer, tol));
   for (const Contact& c : answer) {

@@ -1,19 +1,13 @@
 #include "boxpile/validation/judge/systematic.hpp"
 
+#include "boxpile/validation/judge/printed.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 namespace boxpile {
 namespace {
-
-template <class... Args>
-std::string printed(const char* format, Args... args) {
-  const int n = std::snprintf(nullptr, 0, format, args...);
-  std::string s(static_cast<std::size_t>(n), '\0');
-  std::snprintf(s.data(), s.size() + 1, format, args...);
-  return s;
-}
 
 bool named(const ConstantFit& f) {
   return f.within >= kSystematicMinimum && f.within >= kSystematicShare * f.of;
