@@ -14,10 +14,10 @@ namespace boxpile {
 
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
 double ground_depth(std::span<const OrientedBox> boxes, const HalfSpace& ground) {
-  double deepest = -kInfinity;
+  double deepest = -kUnbounded;
   for (const OrientedBox& box : boxes) deepest = std::max(deepest, box_plane_depth(box, ground));
   return deepest;
 }
@@ -117,7 +117,7 @@ double measure_levitation(const std::vector<RigidBody>& bodies, const std::optio
 
   // Per resting body, an upper bound on its gap (the ground's; +inf without ground or when not
   // resting: then it is no candidate at all).
-  std::vector<double> gap(n, -kInfinity);  // -inf: not a resting body, contributes nothing
+  std::vector<double> gap(n, -kUnbounded);  // -inf: not a resting body, contributes nothing
   std::vector<double> reach(n, 0.0);       // separation within which its candidates are complete
   for (std::size_t i = 0; i < n; ++i) {
     const RigidBody& b = bodies[i];
@@ -125,7 +125,7 @@ double measure_levitation(const std::vector<RigidBody>& bodies, const std::optio
     const Aabb& bounds = p.aabbs[i];
     const double size = bounds.hi.maxCoeff() - bounds.lo.minCoeff();
     if (b.v.norm() > rest_speed || b.omega.norm() * size > rest_speed) continue;
-    gap[i] = ground ? -ground_depth(p.placed.of(static_cast<int>(i)), *ground) : kInfinity;
+    gap[i] = ground ? -ground_depth(p.placed.of(static_cast<int>(i)), *ground) : kUnbounded;
     reach[i] = kSearchInSizes * half_diagonal(bounds);
   }
   auto below = [&](std::size_t i, std::size_t j) { return down.dot(bodies[j].x - bodies[i].x) > 0.0; };
@@ -144,7 +144,7 @@ double measure_levitation(const std::vector<RigidBody>& bodies, const std::optio
     SweepAndPrune sweep;
     for (const auto& [a, b] : sweep.find_pairs(grown, std::vector<char>(n, 0))) {
       for (const auto& [i, j] : {std::pair<std::size_t, std::size_t>(a, b), std::pair<std::size_t, std::size_t>(b, a)}) {
-        if (gap[i] == -kInfinity || !below(i, j) || separation_bound(p.aabbs[i], p.aabbs[j]) >= gap[i]) continue;
+        if (gap[i] == -kUnbounded || !below(i, j) || separation_bound(p.aabbs[i], p.aabbs[j]) >= gap[i]) continue;
         gap[i] = std::min(gap[i], -placed_pair_depth(p.placed.of(static_cast<int>(i)), p.placed.of(static_cast<int>(j))));
       }
     }
@@ -156,7 +156,7 @@ double measure_levitation(const std::vector<RigidBody>& bodies, const std::optio
   double worst = 0.0;
   std::vector<std::size_t> floating;
   for (std::size_t i = 0; i < n; ++i) {
-    if (gap[i] == -kInfinity) continue;
+    if (gap[i] == -kUnbounded) continue;
     if (gap[i] <= reach[i]) {
       if (std::isfinite(gap[i])) worst = std::max(worst, gap[i]);
     } else {
