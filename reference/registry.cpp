@@ -10,7 +10,9 @@
 #include "boxpile/reference/ode/ode_engine.hpp"
 #include "boxpile/sim/collision/box_box.hpp"
 #include "boxpile/sim/collision/box_plane.hpp"
+#include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/sim/io/own_settings.hpp"
+#include "boxpile/sim/solver/penalty_parameters.hpp"
 #include "boxpile/sim/world.hpp"
 
 namespace boxpile {
@@ -69,6 +71,20 @@ EngineRow own_row(std::string name, std::string title, std::optional<ContactSolv
     return std::make_unique<World>(own_scene(scene, settings, method), name);
   };
   row.scene_with = [](const Scene& scene, const json& settings) { return own_scene(scene, settings, std::nullopt); };
+  row.work_per_step = [method](const Scene& scene, const json& settings) -> long {
+    const Scene s = own_scene(scene, settings, method);
+    return s.solver.method == ContactSolver::Penalty ? derive_penalty_parameters(s).substeps : 1;
+  };
+  row.time_step_problem = [method](const Scene& scene, const json& settings) -> std::string {
+    const Scene s = own_scene(scene, settings, method);
+    if (s.solver.method != ContactSolver::Penalty) return {};
+    return penalty_parameters_problem(s, derive_penalty_parameters(s));
+  };
+  if (!method) {
+    row.runs_as = [](const Scene& scene) -> std::string {
+      return scene.solver.method == ContactSolver::Penalty ? "own-penalty" : "own-impulse";
+    };
+  }
   row.settings = [method] {
     std::vector<SettingInfo> out;
     for (const Setting<Scene>& s : own_settings_table().rows())
@@ -203,9 +219,9 @@ std::vector<std::string> default_engines(bool DefaultLists::*list) {
 
 const EngineRow& engine_row(std::string_view name) {
   const EngineRow* row = find_engine_row(name);
-  if (!row) throw UnknownEngine("unknown engine \"" + std::string(name) + "\"; available: " + available_engines_text());
+  if (!row) throw UnknownEngine("unknown engine " + json_input::in_quotes(name) + "; available: " + available_engines_text());
   if (!row->available()) {
-    throw UnknownEngine("engine \"" + std::string(name) + "\": " + row->unavailable +
+    throw UnknownEngine("engine " + json_input::in_quotes(name) + ": " + row->unavailable +
                         "; available: " + available_engines_text());
   }
   return *row;
@@ -220,6 +236,21 @@ std::unique_ptr<Engine> make_engine(std::string_view name, const Scene& scene, c
 Scene scene_with_settings(std::string_view name, const Scene& scene, const json& settings) {
   const EngineRow& row = engine_row(name);
   return row.scene_with ? row.scene_with(scene, settings.is_null() ? json::object() : settings) : scene;
+}
+
+long engine_work_per_step(std::string_view name, const Scene& scene, const json& settings) {
+  const EngineRow& row = engine_row(name);
+  return row.work_per_step ? row.work_per_step(scene, settings.is_null() ? json::object() : settings) : 1;
+}
+
+std::string engine_time_step_problem(std::string_view name, const Scene& scene, const json& settings) {
+  const EngineRow& row = engine_row(name);
+  return row.time_step_problem ? row.time_step_problem(scene, settings.is_null() ? json::object() : settings) : "";
+}
+
+std::string engine_runs_as(std::string_view name, const Scene& scene) {
+  const EngineRow& row = engine_row(name);
+  return row.runs_as ? row.runs_as(scene) : std::string(name);
 }
 
 std::vector<SettingInfo> engine_settings(std::string_view name) {

@@ -81,6 +81,15 @@ struct EngineRow {
   // with the given settings written in, so that the rulers read what the engine runs. Empty for
   // engines whose settings live outside the scene.
   std::function<Scene(const Scene& scene, const nlohmann::json& settings)> scene_with;
+  // What one step of `scene` costs against the step cap, in steps: the penalty method's
+  // substeps each find and resolve the contacts, a whole step's work. Empty: 1.
+  std::function<long(const Scene& scene, const nlohmann::json& settings)> work_per_step;
+  // Why the engine cannot run `scene` at its time step with the given settings, known before it
+  // is built (the penalty method's stability bound); empty function or text: it can.
+  std::function<std::string(const Scene& scene, const nlohmann::json& settings)> time_step_problem;
+  // The row whose engine this one is on `scene` ("own" is own-impulse or own-penalty by the
+  // scene's solver.method): two names of one engine are not run side by side. Empty: itself.
+  std::function<std::string(const Scene& scene)> runs_as;
   // The contact detectors the engine brings (none, one, or variants of one).
   std::vector<DetectorInfo> detectors;
   DefaultLists in;
@@ -119,6 +128,12 @@ std::unique_ptr<Engine> make_engine(std::string_view name, const Scene& scene,
 // `scene` with `name`'s settings written in when they are the scene's (EngineRow::scene_with),
 // else `scene` unchanged.
 Scene scene_with_settings(std::string_view name, const Scene& scene, const nlohmann::json& settings);
+
+// EngineRow::work_per_step, time_step_problem and runs_as of `name` (1, "" and `name` when the
+// row has none).
+long engine_work_per_step(std::string_view name, const Scene& scene, const nlohmann::json& settings);
+std::string engine_time_step_problem(std::string_view name, const Scene& scene, const nlohmann::json& settings);
+std::string engine_runs_as(std::string_view name, const Scene& scene);
 
 // The settings `name` declares.
 std::vector<SettingInfo> engine_settings(std::string_view name);

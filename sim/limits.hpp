@@ -66,6 +66,16 @@ inline constexpr double kMaxTimeStep = 1.0;
 inline constexpr long kDefaultMaxSteps = 10'000'000;       // 11.6 h at dt = 1/240 s
 inline constexpr std::size_t kDefaultMaxBodies = 100'000;  // loads in about a second
 inline constexpr int kDefaultMaxIterations = 1'000;        // reference solver iterations per step
+// Pairs of bodies whose bounding boxes overlap in one step (--max-pairs): each costs its contacts
+// in every engine, and nothing else bounds them inside the body cap. 3,000 boxes at one point
+// (4.5 million pairs) took Bullet to 24.4 GB before it died, ODE segfaulted creating contact
+// joints under 8 GiB, ours ran out of memory. A pile at the body cap, each box touching six
+// others, makes 300,000 pairs; at Bullet's 5 KB a pair the cap keeps it near 5 GB.
+inline constexpr std::size_t kDefaultMaxPairs = 1'000'000;
+// Bytes of one input file (a scene, a query, a grid, a recording; --max-input-bytes): a scene at
+// the body cap is about 20 MB of JSON, its parsed document ten times that. Larger text is refused
+// before it is read, instead of exhausting memory (`boxpile run /dev/zero` used to).
+inline constexpr std::size_t kDefaultMaxInputBytes = std::size_t{1} << 30;  // 1 GiB
 // No run takes more steps than this whatever the flags say: step counts stay exact in a double
 // and far inside a long. The scene loader refuses a duration beyond it.
 inline constexpr long kMaxRepresentableSteps = 1'000'000'000'000'000;  // 1e15

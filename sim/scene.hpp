@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "boxpile/sim/body.hpp"
+#include "boxpile/sim/limits.hpp"
 #include "boxpile/sim/math.hpp"
 
 namespace boxpile {
@@ -170,6 +171,9 @@ struct Scene {
   TimeSettings time;
   bool allow_initial_overlap = false;
   SceneChecks checks;
+  // A cap on work, not read from the file (the loader's LoadLimits, the command line's
+  // --max-pairs): our World refuses a step whose broadphase finds more pairs than this.
+  std::size_t max_pairs = limits::kDefaultMaxPairs;
 };
 
 // The simulator's bodies for a scene, in scene order.

@@ -31,6 +31,15 @@ inline std::string number(double x) {
   std::snprintf(buf, sizeof buf, "%.6g", x);
   return buf;
 }
+// A step count as a whole number ("10000001 steps", not the "1e+07" that hides the one over the
+// cap), or "more steps than a double counts" when duration / dt overflows.
+inline std::string step_count_text(double steps) {
+  if (!(steps < std::numeric_limits<double>::infinity())) return "more steps than a double counts";
+  if (steps >= 1e18) return number(steps) + " steps";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.0f steps", steps);
+  return buf;
+}
 }  // namespace time_steps_detail
 
 // dt must be a number in (0, kMaxTimeStep], duration a number >= 0, and the step count at most
@@ -40,6 +49,7 @@ inline std::string number(double x) {
 inline std::optional<TimeSettingsProblem> check_time_settings(double dt, double duration,
                                                               long max_steps = limits::kMaxRepresentableSteps) {
   using time_steps_detail::number;
+  using time_steps_detail::step_count_text;
   using Field = TimeSettingsProblem::Field;
   if (!(dt > 0.0 && dt <= limits::kMaxTimeStep)) {
     return TimeSettingsProblem{Field::Dt, "must be a number in (0, " + number(limits::kMaxTimeStep) +
@@ -48,10 +58,10 @@ inline std::optional<TimeSettingsProblem> check_time_settings(double dt, double 
   if (!(duration >= 0.0 && duration < std::numeric_limits<double>::infinity())) {
     return TimeSettingsProblem{Field::Duration, "must be a finite number >= 0 s, got " + number(duration)};
   }
-  const double steps = duration / dt;  // finite or +inf, never NaN here
+  const double steps = std::round(duration / dt);  // finite or +inf, never NaN here
   if (!(steps <= static_cast<double>(max_steps))) {
     return TimeSettingsProblem{Field::Duration, number(duration) + " s at dt " + number(dt) + " s is " +
-                                                    number(steps) + " steps, above the cap of " +
+                                                    step_count_text(steps) + ", above the cap of " +
                                                     std::to_string(max_steps),
                                true};
   }

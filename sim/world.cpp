@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace boxpile {
 
@@ -77,8 +79,17 @@ void World::collide_body_pairs() {
     bounds_[i] = boxes_aabb(placed_.of(static_cast<int>(i)), margins_[i]);
     fixed_[i] = bodies_[i].fixed;
   }
+  const std::vector<std::pair<int, int>>& pairs = broadphase_.find_pairs(bounds_, fixed_, scene_.max_pairs);
+  if (pairs.size() > scene_.max_pairs) {
+    // Each pair costs its contacts and their rows in the contact method: refused before the
+    // narrowphase makes them (3,000 boxes at one point used to exhaust memory).
+    throw std::runtime_error(name_ + ": step " + std::to_string(counters_.steps + 1) + ": more than " +
+                             std::to_string(scene_.max_pairs) +
+                             " pairs of bodies touch, above the cap on the pairs a step may make (--max-pairs "
+                             "raises it)");
+  }
   CollisionSettings cs = scene_.collision;
-  for (const auto& pair : broadphase_.find_pairs(bounds_, fixed_)) {
+  for (const auto& pair : pairs) {
     const int i = pair.first, j = pair.second;  // named: clang 14 cannot capture a structured binding
     ++counters_.broadphase_pairs;
     cs.margin = margins_[i] + margins_[j] - std::max(base_margins_[i], base_margins_[j]);

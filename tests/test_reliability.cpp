@@ -156,7 +156,7 @@ TEST_CASE("the loader refuses bad time settings with the field named", "[reliabi
   check_refused(s, "time.dt", "must be a number in (0, 1] s, got 2");
   s = one_box();
   s["time"] = {{"dt", 1e-300}, {"duration", 1e300}};
-  check_refused(s, "time.duration", "steps, above the cap");
+  check_refused(s, "time.duration", "is more steps than a double counts, above the cap");
 }
 
 TEST_CASE("text after a NUL byte, blank and control-character names", "[reliability]") {

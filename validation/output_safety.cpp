@@ -14,6 +14,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <iostream>
 
 namespace boxpile {
 namespace {
@@ -72,13 +73,8 @@ void remove_all_staged() {
 constexpr int kFatalSignals[] = {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL};
 struct sigaction g_previous[sizeof kFatalSignals / sizeof kFatalSignals[0]];
 
-// The process dies of this signal as it would have without us, once the staging is gone.
-[[noreturn]] void die_of(int sig) {
-  remove_all_staged();
-  std::signal(sig, SIG_DFL);
-  std::raise(sig);
-  std::_Exit(128 + sig);
-}
+// The exit code of an interrupted command (docs/reliability.md): 128 + SIGINT, for SIGTERM too.
+constexpr int kInterruptedExitCode = 130;
 
 extern "C" void on_fatal_signal(int sig) {
   remove_all_staged();
@@ -90,12 +86,17 @@ extern "C" void on_fatal_signal(int sig) {
   if (sig == SIGABRT) std::raise(sig);
 }
 
-extern "C" void on_stop_signal(int sig) {
+extern "C" void on_stop_signal(int) {
   if (g_scope_depth.load() > 0 && !g_interrupted) {
     g_interrupted = 1;
     return;
   }
-  die_of(sig);
+  // Outside a run (parsing, loading, writing a report) or at a second signal: the staging goes
+  // and the process exits with the documented code (write and _exit are async-signal-safe).
+  remove_all_staged();
+  constexpr char kMessage[] = "\nboxpile: interrupted: nothing written\n";
+  [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+  std::_Exit(kInterruptedExitCode);
 }
 
 void install_stop_handlers() {
@@ -143,7 +144,23 @@ void give_default_permissions(const fs::path& path, mode_t base) {
   chmod(path.c_str(), base & ~mask);
 }
 
+// A staging path left by a run that was killed outright (SIGKILL, a power cut: no handler ran).
+// Another run may be writing the same target right now, so it is named, not deleted.
+void warn_of_abandoned_staging(const fs::path& parent, const std::string& prefix) {
+  std::error_code ec;
+  for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() == prefix.size() + 6 && name.starts_with(prefix)) {
+      std::cerr << "boxpile: warning: " << it->path().string()
+                << " is the staging of an earlier run that was killed before it could clean up (or of a run "
+                   "writing the same output now): remove it once no such run is left\n";
+    }
+  }
+}
+
 }  // namespace
+
+void install_signal_handlers() { install_handlers_once(); }
 
 void check_output_path(const fs::path& target, OutputKind kind, const std::vector<fs::path>& inputs) {
   if (target.empty()) refuse(target, "no path given");
@@ -165,12 +182,35 @@ void check_output_path(const fs::path& target, OutputKind kind, const std::vecto
   }
 }
 
-fs::path prepare_parent(const fs::path& target) {
-  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+PreparedParent::PreparedParent(const fs::path& target)
+    : parent_(target.has_parent_path() ? target.parent_path() : fs::path(".")) {
   std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec) refuse(target, "cannot create " + parent.string() + ": " + ec.message());
-  return parent;
+  // The folders missing, outermost first, so that each is created (and later removed) in turn.
+  std::vector<fs::path> missing;
+  for (fs::path p = parent_; !p.empty() && !fs::exists(fs::symlink_status(p, ec)); p = p.parent_path()) {
+    missing.push_back(p);
+    if (p == p.parent_path()) break;
+  }
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+    if (!fs::create_directory(*it, ec) && ec) refuse(target, "cannot create " + it->string() + ": " + ec.message());
+    created_.push_back(*it);
+  }
+  fs::create_directories(parent_, ec);  // whatever the loop could not see (a race): fails alike
+  if (ec) refuse(target, "cannot create " + parent_.string() + ": " + ec.message());
+}
+
+PreparedParent::~PreparedParent() {
+  // Deepest first; a folder that is no longer empty (someone wrote into it) stays, and so do its
+  // parents.
+  for (auto it = created_.rbegin(); it != created_.rend(); ++it) {
+    if (::rmdir(it->c_str()) != 0) break;
+  }
+}
+
+fs::path prepare_parent(const fs::path& target) {
+  PreparedParent p(target);
+  p.keep();
+  return p.path();
 }
 
 StagedPath::StagedPath(const fs::path& path) {
@@ -208,6 +248,7 @@ Staging create_staging(const fs::path& target, const fs::path& parent, OutputKin
   // (Built by appending: GCC 12 warns falsely about "." + string, -Wrestrict.)
   std::string name(1, '.');
   name += target.filename().string();
+  warn_of_abandoned_staging(parent, name + ".tmp-");
   name += ".tmp-XXXXXX";
   std::string pattern = (parent / name).string();
   // A signal arriving between the staging's creation and its registration would leave it behind.
@@ -236,9 +277,9 @@ Staging create_staging(const fs::path& target, const fs::path& parent, OutputKin
   return staging;
 }
 
-OutputFile::OutputFile(fs::path target, const std::vector<fs::path>& inputs) : target_(std::move(target)) {
-  check_output_path(target_, OutputKind::File, inputs);
-  Staging staging = create_staging(target_, prepare_parent(target_), OutputKind::File);
+OutputFile::OutputFile(fs::path target, const std::vector<fs::path>& inputs)
+    : target_(std::move(target)), parent_((check_output_path(target_, OutputKind::File, inputs), target_)) {
+  Staging staging = create_staging(target_, parent_.path(), OutputKind::File);
   staging_ = std::move(staging.path);
   registration_ = std::move(staging.registration);
 }
@@ -270,6 +311,7 @@ void OutputFile::commit(std::string_view content) {
   fs::rename(staging_, target_, ec);
   if (ec) refuse(target_, "cannot rename the finished file into place: " + ec.message());
   committed_ = true;
+  parent_.keep();
 }
 
 InterruptScope::InterruptScope() {

@@ -55,8 +55,30 @@ void check_output_path(const std::filesystem::path& target, OutputKind kind,
                        const std::vector<std::filesystem::path>& inputs);
 
 // The directory an output's staging goes into (the target's parent, "." for a bare name), created
-// with its parents when missing; OutputError when that fails.
+// with its parents when missing; OutputError when that fails. The folders it created are removed
+// again (while empty) when it is destroyed before keep(): a run refused after its output was
+// checked (a bad --dt, a scene over a cap) leaves no folders behind.
+class PreparedParent {
+ public:
+  explicit PreparedParent(const std::filesystem::path& target);
+  ~PreparedParent();
+  PreparedParent(PreparedParent&&) = default;
+  PreparedParent& operator=(PreparedParent&&) = default;
+  const std::filesystem::path& path() const { return parent_; }
+  // The output is in place: the folders stay.
+  void keep() { created_.clear(); }
+
+ private:
+  std::filesystem::path parent_;
+  std::vector<std::filesystem::path> created_;  // deepest last
+};
+// The parent of an output, kept: for writers that commit at once.
 std::filesystem::path prepare_parent(const std::filesystem::path& target);
+
+// Installs the SIGINT and SIGTERM handlers at the start of a command, before its arguments are
+// parsed: outside an InterruptScope they remove any staged path, say "boxpile: interrupted" and
+// exit 130 (the documented code, whatever the signal and whenever it comes).
+void install_signal_handlers();
 
 // Registers a staging path (file or directory) for removal if the process is interrupted outside
 // an InterruptScope or killed by a fatal signal. RAII: unregisters when destroyed. At most 16 at
@@ -114,6 +136,7 @@ class OutputFile {
 
  private:
   std::filesystem::path target_;
+  PreparedParent parent_;
   std::filesystem::path staging_;
   std::unique_ptr<StagedPath> registration_;
   bool committed_ = false;

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 
+#include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/validation/data_directory.hpp"
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/output_safety.hpp"
@@ -154,12 +155,12 @@ void add_node_engines() {
 void add_engine_command(std::string_view text) {
   const std::size_t eq = text.find('=');
   if (eq == std::string_view::npos) {
-    throw EngineCommandError("--engine-cmd: \"" + std::string(text) + "\" is not NAME=COMMAND");
+    throw EngineCommandError("--engine-cmd: " + json_input::in_quotes(text) + " is not NAME=COMMAND");
   }
   const std::string name(text.substr(0, eq)), command(text.substr(eq + 1));
   if (!valid_name(name)) {
-    throw EngineCommandError("--engine-cmd: the name \"" + name +
-                             "\" is not lowercase letters, digits and hyphens starting with a letter");
+    throw EngineCommandError("--engine-cmd: the name " + json_input::in_quotes(name) +
+                             " is not lowercase letters, digits and hyphens starting with a letter");
   }
   if (command.find_first_not_of(" \t") == std::string::npos) {
     throw EngineCommandError("--engine-cmd " + name + ": the command is empty");

@@ -45,15 +45,21 @@ ReportDirectory::ReportDirectory(fs::path target, const std::vector<fs::path>& i
   if (target_.empty()) refuse_report(target_, "no directory given");
   // "out/" names the directory "out": drop the trailing separator, so that its parent is found.
   if (!target_.has_filename()) target_ = target_.parent_path();
+  if (target_.empty()) target_ = ".";
   check_target(target_, inputs, marker_);
-  fs::path parent;
-  try {
-    parent = prepare_parent(target_);
-  } catch (const OutputError& e) {
-    refuse_report(target, e.why());
+  std::error_code ec;
+  in_place_ = fs::is_directory(fs::symlink_status(target_, ec)) && fs::is_empty(target_, ec);
+  fs::path parent = target_;
+  if (!in_place_) {
+    try {
+      parent_.emplace(target_);
+      parent = parent_->path();
+    } catch (const OutputError& e) {
+      refuse_report(target, e.why());
+    }
   }
   try {
-    Staging staging = create_staging(target_, parent, OutputKind::Directory);
+    Staging staging = create_staging(in_place_ ? target_ / "report" : target_, parent, OutputKind::Directory);
     staging_ = std::move(staging.path);
     registration_ = std::move(staging.registration);
   } catch (const OutputError& e) {
@@ -72,12 +78,27 @@ ReportDirectory::~ReportDirectory() {
 }
 
 void ReportDirectory::commit() {
-  check_target(target_, {}, marker_);  // it may have changed during the run
   std::error_code ec;
+  if (in_place_) {
+    // The target held nothing but the staging: its files move out of it, signals waiting.
+    for (const fs::directory_entry& e : fs::directory_iterator(target_, ec)) {
+      if (e.path() != staging_) refuse_report(target_, "something was written into it during the run: " + e.path().string());
+    }
+    const HeldSignals held;
+    for (const fs::directory_entry& e : fs::directory_iterator(staging_)) {
+      fs::rename(e.path(), target_ / e.path().filename(), ec);
+      if (ec) refuse_report(target_, "cannot move the finished report into place: " + ec.message());
+    }
+    committed_ = true;
+    fs::remove(staging_, ec);
+    return;
+  }
+  check_target(target_, {}, marker_);  // it may have changed during the run
   if (!fs::exists(target_, ec)) {
     fs::rename(staging_, target_, ec);
     if (ec) refuse_report(target_, "cannot rename the finished report into place: " + ec.message());
     committed_ = true;
+    if (parent_) parent_->keep();
     return;
   }
   // Swap the two directories in one step, then delete the old report (now at the staging path).

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -46,9 +47,14 @@ class ReportDirectory {
 
  private:
   std::filesystem::path target_;
+  std::optional<PreparedParent> parent_;  // absent when the report fills an existing empty directory
   std::filesystem::path staging_;
   std::unique_ptr<StagedPath> registration_;
   std::string marker_;
+  // An existing empty directory (`--report .` in an empty folder) is filled in place: its staging
+  // lies inside it and commit() moves the files out of it, so that the directory (perhaps the
+  // shell's working directory) stays the same one, and its parent need not be writable.
+  bool in_place_ = false;
   bool committed_ = false;
 };
 

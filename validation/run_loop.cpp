@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <new>
+#include <string>
 #include <utility>
 
 #include "boxpile/sim/finite.hpp"
@@ -30,7 +32,13 @@ RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const 
   for (long k = 1; k <= steps; ++k) {
     std::swap(before, states);
     const Clock::time_point start = Clock::now();
-    engine.step();
+    try {
+      engine.step();
+    } catch (const std::bad_alloc&) {
+      throw OutOfMemory(std::string(engine.name()) + ": step " + std::to_string(k) +
+                        ": out of memory building the step's contacts and solver rows (--max-pairs lowers the "
+                        "pairs a step may make)");
+    }
     stepping += Clock::now() - start;
     engine.body_states(states);
     if (const auto bad = find_non_finite(states)) {
@@ -43,10 +51,15 @@ RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const 
     }
     result.steps = k;
     throw_if_interrupted();  // a SIGINT or SIGTERM inside an InterruptScope stops the run here
-    call(hooks.step, k);
-    if (k % every == 0 || k == steps) {
-      call(hooks.frame, k);
-      last_frame = k;
+    try {
+      call(hooks.step, k);
+      if (k % every == 0 || k == steps) {
+        call(hooks.frame, k);
+        last_frame = k;
+      }
+    } catch (const std::bad_alloc&) {
+      throw OutOfMemory(std::string(engine.name()) + ": step " + std::to_string(k) +
+                        ": out of memory measuring or recording the frame");
     }
   }
   result.wall_seconds = std::chrono::duration<double>(stepping).count();

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,13 @@ struct RunHooks {
   std::function<void(const StepView&)> step;
   // At the start, every `every` steps and after the last step.
   std::function<void(const StepView&)> frame;
+};
+
+// An allocation failed inside a step or a hook: the message names the engine, the step and the
+// part (std::bad_alloc names nothing). A run that is out of memory went wrong (exit 1).
+class OutOfMemory : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 struct RunLoopResult {

@@ -105,13 +105,18 @@ nlohmann::json convergence_json(const Convergence& c) {
 
 }  // namespace
 
-CellResult run_cell(const SweepGrid& grid, const CellSpec& cell) {
-  const GridScene& gs = grid.scenes[static_cast<std::size_t>(cell.scene)];
-  EngineConfig config{gs.scene, {}};
+EngineConfig cell_config(const SweepGrid& grid, const CellSpec& cell) {
+  EngineConfig config{grid.scenes[static_cast<std::size_t>(cell.scene)].scene, {}};
   config.scene.time.dt = cell.dt;
   apply_settings(cell.engine, cell.settings, config);
   // Our engine's settings are the scene's: the rulers below read the scene it runs.
   config.scene = scene_with_settings(cell.engine, config.scene, config.settings);
+  return config;
+}
+
+CellResult run_cell(const SweepGrid& grid, const CellSpec& cell) {
+  const GridScene& gs = grid.scenes[static_cast<std::size_t>(cell.scene)];
+  const EngineConfig config = cell_config(grid, cell);
 
   CellResult r;
   r.spec = cell;

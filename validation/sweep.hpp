@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "boxpile/validation/engine_settings.hpp"
 #include "boxpile/validation/sweep_grid.hpp"
 #include "boxpile/validation/sweep_measures.hpp"
 
@@ -38,6 +39,10 @@ struct CellResult {
   CellMeasures measures;
   std::optional<Convergence> convergence;  // our impulse method only
 };
+
+// A cell's scene and engine settings: the grid's scene at the cell's dt with its settings
+// applied (what run_cell runs, and what the command line checks against the caps first).
+EngineConfig cell_config(const SweepGrid& grid, const CellSpec& cell);
 
 // Runs one cell: one measured run (timed as well), then repetitions - 1 runs timed alone.
 CellResult run_cell(const SweepGrid& grid, const CellSpec& cell);

@@ -17,7 +17,7 @@ using json_input::JsonNode;
 // More timed repetitions than this say nothing more about the least time and only cost.
 constexpr int kMaxRepetitions = 100;
 
-std::vector<GridScene> read_scenes(const JsonNode& node, const fs::path& base) {
+std::vector<GridScene> read_scenes(const JsonNode& node, const fs::path& base, const LoadLimits& caps) {
   std::vector<GridScene> scenes;
   const std::size_t n = node.array_size();
   if (n == 0) node.fail("must list at least one scene");
@@ -27,7 +27,7 @@ std::vector<GridScene> read_scenes(const JsonNode& node, const fs::path& base) {
     const fs::path file = fs::path(path).is_absolute() ? fs::path(path) : base / path;
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) entry.fail("no scene file " + file.lexically_normal().string());
-    scenes.push_back({path, load_scene(file.lexically_normal().string())});
+    scenes.push_back({path, load_scene(file.lexically_normal().string(), caps)});
   }
   return scenes;
 }
@@ -98,10 +98,10 @@ void check_methods(const SweepGrid& grid, const JsonNode& engines) {
 
 }  // namespace
 
-SweepGrid load_grid(const std::string& path) {
+SweepGrid load_grid(const std::string& path, const LoadLimits& caps) {
   SweepGrid grid;
   grid.source = path;
-  grid.document = json_input::parse(json_input::read_text_file(path), path);
+  grid.document = json_input::parse(json_input::read_text_file(path, caps.max_input_bytes), path);
   const JsonNode root(grid.document, path);
   root.expect_object({"note", "scenes", "dt", "duration", "repetitions", "engines"});
   if (const auto note = root.find("note")) note->string();
@@ -119,7 +119,7 @@ SweepGrid load_grid(const std::string& path) {
   if (!engines.json().is_object() || engines.json().empty()) engines.fail("must name at least one engine");
   for (const auto& item : engines.json().items()) grid.engines.push_back(read_engine(item.key(), engines.at(item.key())));
 
-  grid.scenes = read_scenes(root.at("scenes"), fs::path(path).parent_path());
+  grid.scenes = read_scenes(root.at("scenes"), fs::path(path).parent_path(), caps);
   check_methods(grid, engines);
   if (grid.duration) {
     for (GridScene& s : grid.scenes) s.scene.time.duration = *grid.duration;

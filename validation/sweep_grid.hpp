@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
@@ -38,7 +39,7 @@ struct SweepGrid {
 
 // Loads and checks a grid; InputError naming the file and the key for anything wrong (a missing
 // scene file, an unknown engine or setting, a value out of range).
-SweepGrid load_grid(const std::string& path);
+SweepGrid load_grid(const std::string& path, const LoadLimits& caps = {});
 
 // One cell: a scene in one engine with one value of each setting, at one time step.
 struct CellSpec {

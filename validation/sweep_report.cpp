@@ -283,8 +283,8 @@ nlohmann::json sweep_json(const SweepReport& r) {
           {"fronts", fronts}};
 }
 
-SweepReport read_sweep_json(const std::string& path) {
-  const nlohmann::json j = json_input::parse(json_input::read_text_file(path), path);
+SweepReport read_sweep_json(const std::string& path, std::size_t max_bytes) {
+  const nlohmann::json j = json_input::parse(json_input::read_text_file(path, max_bytes), path);
   SweepReport r;
   try {
     r.grid_file = j.at("grid_file").get<std::string>();

@@ -46,7 +46,7 @@ SceneFronts fronts_of(const SweepReport& report, const std::string& scene, const
 
 nlohmann::json sweep_json(const SweepReport& report);
 // Reads a sweep.json; InputError naming the file for anything missing or malformed.
-SweepReport read_sweep_json(const std::string& path);
+SweepReport read_sweep_json(const std::string& path, std::size_t max_bytes = limits::kDefaultMaxInputBytes);
 
 // For the terminal: how many cells, how many of them fail a check.
 std::string sweep_summary(const SweepReport& report);

@@ -1,6 +1,7 @@
 #include "boxpile/validation/sweep_runner.hpp"
 
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -11,10 +12,12 @@
 #include <fstream>
 #include <iostream>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "boxpile/reference/process/process_engine.hpp"
 #include "boxpile/validation/json_output.hpp"
+#include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/report_directory.hpp"
 
 namespace boxpile {
@@ -35,7 +38,12 @@ fs::path cell_file(const fs::path& dir, int index) { return dir / ("cell-" + std
 constexpr int kWorkerEngineBroke = 2;
 
 // The body of worker `w`: its cells, each written as soon as it is done. Never returns.
-[[noreturn]] void worker(const SweepGrid& grid, const std::vector<CellSpec>& cells, int w, int jobs, const fs::path& dir) {
+[[noreturn]] void worker(const SweepGrid& grid, const std::vector<CellSpec>& cells, int w, int jobs, const fs::path& dir,
+                         pid_t parent) {
+  // A worker dies with its parent (SIGKILL of the parent used to leave the workers writing into
+  // its abandoned staging); a parent that died before this line is seen by getppid.
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (getppid() != parent) _exit(1);
   // The parent's handlers (which only set a flag) must not keep a worker alive when it is stopped.
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
@@ -84,29 +92,40 @@ std::vector<CellResult> run_parallel(const SweepGrid& grid, const std::vector<Ce
   std::cout.flush();
   std::cerr.flush();
   std::vector<pid_t> pids;
+  const pid_t parent = getpid();
   for (int w = 0; w < options.jobs; ++w) {
     const pid_t pid = fork();
     if (pid < 0) {
       stop_workers(pids);
       throw std::runtime_error(std::string("cannot start a worker process: ") + std::strerror(errno));
     }
-    if (pid == 0) worker(grid, cells, w, options.jobs, options.work_dir);
+    if (pid == 0) worker(grid, cells, w, options.jobs, options.work_dir, parent);
     pids.push_back(pid);
   }
   int running = static_cast<int>(pids.size()), reported = -1;
-  bool failed = false, engine_broke = false;
+  std::string failure;  // the first worker's failure
+  bool engine_broke = false;
   try {
     while (running > 0) {
-      for (pid_t& p : pids) {
+      for (std::size_t w = 0; w < pids.size(); ++w) {
+        pid_t& p = pids[w];
         if (p <= 0) continue;
         int status = 0;
         if (waitpid(p, &status, WNOHANG) == p) {
-          failed = failed || !WIFEXITED(status) || WEXITSTATUS(status) != 0;
+          if (failure.empty() && WIFSIGNALED(status)) {
+            failure = "worker " + std::to_string(w + 1) + " died of signal " + std::to_string(WTERMSIG(status)) +
+                      " (" + strsignal(WTERMSIG(status)) + ")";
+          } else if (failure.empty() && (!WIFEXITED(status) || WEXITSTATUS(status) != 0)) {
+            failure = "worker " + std::to_string(w + 1) + " failed (its message is above)";
+          }
           engine_broke = engine_broke || (WIFEXITED(status) && WEXITSTATUS(status) == kWorkerEngineBroke);
           p = 0;
           --running;
         }
       }
+      // Ctrl-C reaches the workers too (the terminal signals the whole process group): the
+      // command was interrupted, whatever the workers died of.
+      throw_if_interrupted();
       const int done = count_finished(options.work_dir, cells);
       if (done != reported && options.progress) {
         options.progress({done, static_cast<int>(cells.size()), seconds_since(start), nullptr});
@@ -118,8 +137,9 @@ std::vector<CellResult> run_parallel(const SweepGrid& grid, const std::vector<Ce
     stop_workers(pids);
     throw;
   }
+  throw_if_interrupted();
   if (engine_broke) throw EngineProtocolError("an engine over the protocol broke in a worker process (its message is above)");
-  if (failed) throw std::runtime_error("a worker process failed (its message is above)");
+  if (!failure.empty()) throw std::runtime_error(failure);
   std::vector<CellResult> results;
   for (const CellSpec& c : cells) {
     std::ifstream in(cell_file(options.work_dir, c.index));

@@ -1,6 +1,8 @@
 #include "boxpile/reference/ode/ode_engine.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "boxpile/reference/ode/ode_support.hpp"
@@ -95,8 +97,25 @@ void OdeEngine::World::build_world() {
   dWorldSetAutoDisableFlag(world, 0);  // no sleeping
 
   // A simple space tests every pair of bounding boxes in a fixed order: deterministic, and for
-  // the hundred bodies of our largest scene cheaper than building a hash.
-  space = dSimpleSpaceCreate(nullptr);
+  // the hundred bodies of our largest scene cheaper than building a hash. It is all-pairs, though
+  // (0.59 s a step at 10,000 bodies): above kOdeHashSpaceAbove bodies a multi-resolution hash
+  // space (deterministic for the same scene, its pair order another) with cells from the smallest
+  // to the largest box's size.
+  constexpr std::size_t kOdeHashSpaceAbove = 1'000;
+  if (bodies.size() > kOdeHashSpaceAbove) {
+    double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
+    for (const RigidBody& b : bodies) {
+      for (const BoxShape& shape : b.shapes) {
+        smallest = std::min(smallest, 2.0 * shape.half_extents.minCoeff());
+        largest = std::max(largest, 2.0 * shape.half_extents.norm());
+      }
+    }
+    space = dHashSpaceCreate(nullptr);
+    dHashSpaceSetLevels(space, static_cast<int>(std::floor(std::log2(smallest))),
+                        static_cast<int>(std::ceil(std::log2(largest))));
+  } else {
+    space = dSimpleSpaceCreate(nullptr);
+  }
   contact_joints = dJointGroupCreate(0);
 
   std::size_t geom_count = scene.ground ? 1 : 0;

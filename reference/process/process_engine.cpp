@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "boxpile/sim/io/json_input.hpp"
+
 namespace boxpile {
 namespace {
 
@@ -56,7 +58,7 @@ ProcessEngine::~ProcessEngine() {
 }
 
 void ProcessEngine::fail(const char* op, const std::string& what, const std::string* line) {
-  std::string message = "engine \"" + options_.name + "\" (" + options_.command + "): ";
+  std::string message = "engine " + json_input::in_quotes(options_.name) + " (" + json_input::shortened(options_.command) + "): ";
   message += std::string(op) == "step" ? "step " + std::to_string(steps_ + 1) : std::string(op);
   message += ": " + what;
   if (line) message += "; the line was: " + quote_output(*line);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "boxpile/sim/io/json_input.hpp"
+
 namespace boxpile::protocol {
 namespace {
 
@@ -43,7 +45,8 @@ json parse_object(std::string_view line) {
   if (!ok->is_boolean()) fail("\"ok\" is " + type_of(*ok) + ", not a boolean");
   if (!ok->get<bool>()) {
     const auto error = j.find("error");
-    const std::string text = error != j.end() && error->is_string() ? error->get<std::string>() : "(no \"error\" given)";
+    const std::string text = error != j.end() && error->is_string() ? json_input::shortened(error->get<std::string>())
+                                                                     : "(no \"error\" given)";
     fail("answered ok: false: " + text);
   }
   return j;
@@ -108,7 +111,7 @@ DeclaredSetting declared_setting(const json& s, const std::string& path) {
   d.key = text(field(s, "key", path + "."), path + ".key");
   d.kind = text(field(s, "kind", path + "."), path + ".kind");
   if (d.kind != "integer" && d.kind != "number" && d.kind != "boolean" && d.kind != "choice") {
-    fail("\"" + path + ".kind\" is \"" + d.kind + "\", not one of integer, number, boolean, choice");
+    fail("\"" + path + ".kind\" is " + json_input::in_quotes(d.kind) + ", not one of integer, number, boolean, choice");
   }
   if (const auto u = s.find("unit"); u != s.end()) d.unit = text(*u, path + ".unit");
   if (const auto w = s.find("what"); w != s.end()) d.what = text(*w, path + ".what");
@@ -195,7 +198,7 @@ Hello parse_hello(std::string_view line) {
   h.version = text(field(j, "version", ""), "version");
   h.precision = text(field(j, "precision", ""), "precision");
   if (h.precision != "float32" && h.precision != "float64") {
-    fail("\"precision\" is \"" + h.precision + "\", not float32 or float64");
+    fail("\"precision\" is " + json_input::in_quotes(h.precision) + ", not float32 or float64");
   }
   h.contacts = boolean(field(j, "contacts", ""), "contacts");
   h.timing = boolean(field(j, "timing", ""), "timing");

@@ -82,7 +82,8 @@ void SweepAndPrune::sort_by_lower_x(const std::vector<Aabb>& boxes) {
 }
 
 const std::vector<std::pair<int, int>>& SweepAndPrune::find_pairs(const std::vector<Aabb>& boxes,
-                                                                  const std::vector<char>& fixed) {
+                                                                  const std::vector<char>& fixed,
+                                                                  std::size_t max_pairs) {
   sort_by_lower_x(boxes);
   // Sweep: each box meets the boxes that start before it ends along x.
   const int n = static_cast<int>(boxes.size());
@@ -97,7 +98,9 @@ const std::vector<std::pair<int, int>>& SweepAndPrune::find_pairs(const std::vec
       // for the rounding of the division).
       if (bj.lo.x() > bi.hi.x() + 2.0 * kOrderGrain) break;
       if (fixed[i] && fixed[j]) continue;
-      if (bi.overlaps(bj)) pairs_.emplace_back(std::min(i, j), std::max(i, j));
+      if (!bi.overlaps(bj)) continue;
+      pairs_.emplace_back(std::min(i, j), std::max(i, j));
+      if (pairs_.size() > max_pairs) return pairs_;
     }
   }
   return pairs_;

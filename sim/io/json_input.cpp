@@ -1,5 +1,9 @@
 #include "boxpile/sim/io/json_input.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -27,6 +31,8 @@ constexpr std::size_t kTypoLengthPerEdit = 3;
 // decided by the rounding of the user's digits, not by the user. Real input has norm ~1.
 constexpr double kMinNormalisableNorm = 1e-6;
 
+// Any user's text quoted in a message is cut to this many bytes (in_quotes).
+constexpr std::size_t kMaxQuotedBytes = 200;
 // Long string values are cut to this many characters when quoted in a message.
 constexpr std::size_t kMaxQuotedChars = 40;
 
@@ -217,20 +223,35 @@ constexpr int kNumberOverflowId = 406;
 
 }  // namespace
 
-std::string read_text_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(path, "", "cannot open: it is a directory");
+std::string read_text_file(const std::string& path, std::size_t max_bytes) {
+  // Opened without blocking (a FIFO without a writer would wait forever), then checked by its
+  // descriptor, so that what is read is what was checked.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw InputError(path, "", std::string("cannot open: ") + std::strerror(errno));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) throw InputError(path, "", std::string("cannot open: ") + std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) throw InputError(path, "", "cannot open: it is a directory");
+  if (!S_ISREG(st.st_mode)) {
+    throw InputError(path, "", "cannot open: not a regular file (a device, FIFO or socket is not read)");
   }
-  const auto close = [](std::FILE* f) { std::fclose(f); };
-  const std::unique_ptr<std::FILE, decltype(close)> file(std::fopen(path.c_str(), "rb"), close);
-  if (!file) throw InputError(path, "", std::string("cannot open: ") + std::strerror(errno));
+  const std::string cap = "above the cap of " + std::to_string(max_bytes) + " bytes (--max-input-bytes raises it)";
+  if (static_cast<std::uintmax_t>(st.st_size) > max_bytes) {
+    throw InputError(path, "", std::to_string(st.st_size) + " bytes, " + cap);
+  }
   std::string text;
+  text.reserve(static_cast<std::size_t>(st.st_size));
   char buffer[1 << 16];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
-  if (std::ferror(file.get())) {
-    throw InputError(path, "", std::string("cannot read: ") + std::strerror(errno));
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw InputError(path, "", std::string("cannot read: ") + std::strerror(errno));
+    if (n == 0) break;
+    text.append(buffer, static_cast<std::size_t>(n));
+    if (text.size() > max_bytes) throw InputError(path, "", "more than " + std::to_string(max_bytes) + " bytes (it grew while read), " + cap);
   }
   return text;
 }
@@ -251,7 +272,7 @@ json parse(const std::string& text, const std::string& source) {
   const TextPosition p = position_of(text, builder.error_byte());
   throw InputError(source, "",
                    "JSON syntax error at line " + std::to_string(p.line) + ", column " + std::to_string(p.column) +
-                       ": " + syntax_detail(builder.error_what()));
+                       ": " + shortened(syntax_detail(builder.error_what())));
 }
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
@@ -289,12 +310,20 @@ std::optional<std::string_view> closest_match(std::string_view word,
 }
 
 std::string in_quotes(std::string_view s) {
+  // At most kMaxQuotedBytes of the text, cut before a UTF-8 continuation byte, with the length of
+  // the whole: a 10 MB key makes a line, not a 10 MB message.
+  std::string_view shown = s;
+  if (shown.size() > kMaxQuotedBytes) {
+    std::size_t cut = kMaxQuotedBytes;
+    while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;
+    shown = s.substr(0, cut);
+  }
   // Control characters are shown escaped, so that a message never moves the cursor, rings or
   // clears the terminal that prints it.
   std::string out;
-  out.reserve(s.size() + 2);
+  out.reserve(shown.size() + 2);
   out.push_back('"');
-  for (const char c : s) {
+  for (const char c : shown) {
     const auto u = static_cast<unsigned char>(c);
     if (u < 0x20 || u == 0x7f) {
       char escaped[8];
@@ -305,7 +334,15 @@ std::string in_quotes(std::string_view s) {
     }
   }
   out.push_back('"');
+  if (shown.size() < s.size()) out += "... (" + std::to_string(s.size()) + " characters)";
   return out;
+}
+
+std::string shortened(std::string_view s) {
+  std::string quoted = in_quotes(s);
+  // The same cut and escapes without the quotes, for text that is not a name (a parser's detail).
+  const std::size_t close = quoted.rfind('"');
+  return quoted.substr(1, close - 1) + quoted.substr(close + 1);
 }
 
 std::string format_number(double x) {

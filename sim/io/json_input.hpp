@@ -21,8 +21,11 @@
 
 namespace boxpile::json_input {
 
-// The whole text of the file at `path`; InputError(path, "", "cannot open: <reason>") otherwise.
-std::string read_text_file(const std::string& path);
+// The whole text of the regular file at `path`, of at most `max_bytes`: InputError(path, "",
+// "cannot open: <reason>") otherwise. A device, FIFO or socket is refused without blocking or
+// reading it (/dev/zero never ends, a FIFO without a writer never answers); a larger file is
+// refused before it is read, naming the cap and its flag.
+std::string read_text_file(const std::string& path, std::size_t max_bytes = limits::kDefaultMaxInputBytes);
 
 // Parses JSON text. Syntax errors are reported with line and column; a key given twice in one
 // object and a number beyond the range of a double are reported with their JSON path.
@@ -36,8 +39,12 @@ std::size_t edit_distance(std::string_view a, std::string_view b);
 std::optional<std::string_view> closest_match(std::string_view word,
                                               std::span<const std::string_view> candidates);
 
-// `s` in double quotes, as names and keys appear in messages.
+// `s` in double quotes, as names and keys appear in messages: control characters escaped, and cut
+// to its first 200 bytes (with its length) when longer. Every message that quotes a user's text
+// (a name, a key, a flag's value, a path) quotes it with this.
 std::string in_quotes(std::string_view s);
+// The same cut and escapes without the quotes (a parser's detail that echoes the input).
+std::string shortened(std::string_view s);
 
 // Shortest text that reads back as the same double ("0.5", "-1", "1e-12", "inf").
 std::string format_number(double x);

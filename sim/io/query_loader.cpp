@@ -79,8 +79,8 @@ ContactQuery parse_query(const std::string& text, const std::string& source) {
   return query;
 }
 
-ContactQuery load_query(const std::string& path) {
-  return parse_query(json_input::read_text_file(path), path);
+ContactQuery load_query(const std::string& path, std::size_t max_bytes) {
+  return parse_query(json_input::read_text_file(path, max_bytes), path);
 }
 
 }  // namespace boxpile

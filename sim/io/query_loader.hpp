@@ -38,7 +38,7 @@ struct ContactQuery {
   std::vector<RecordedAnswer> answers;
 };
 
-ContactQuery load_query(const std::string& path);
+ContactQuery load_query(const std::string& path, std::size_t max_bytes = limits::kDefaultMaxInputBytes);
 ContactQuery parse_query(const std::string& text, const std::string& source);
 
 // A collider's answer: {"contacts": [{"position": [x, y, z], "normal": [x, y, z], "depth": d}, ...]}

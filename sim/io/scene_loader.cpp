@@ -496,22 +496,45 @@ void check_body_overlap(const Scene& scene, const std::vector<RigidBody>& bodies
   }
 }
 
+// The pairs of the first step, before any engine is handed the scene: bodies whose bounding boxes
+// overlap (grown by the initial-overlap tolerance), counted through the broadphase, which stops
+// one past the cap, so that counting costs no more memory than the cap allows.
+void check_pair_cap(const Scene& scene, const std::vector<RigidBody>& bodies) {
+  std::vector<Aabb> boxes;
+  std::vector<char> fixed;
+  boxes.reserve(bodies.size());
+  fixed.reserve(bodies.size());
+  for (const RigidBody& b : bodies) {
+    boxes.push_back(body_aabb(b, kInitialOverlapTolerance));
+    fixed.push_back(b.fixed ? 1 : 0);
+  }
+  SweepAndPrune broadphase;
+  if (broadphase.find_pairs(boxes, fixed, scene.max_pairs).size() > scene.max_pairs) {
+    throw InputError(scene.source, "bodies",
+                     "more than " + std::to_string(scene.max_pairs) +
+                         " pairs of bodies touch or overlap at the start, above the cap on the pairs a step may "
+                         "make (--max-pairs raises it; every pair costs each engine its contacts)");
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& source, const LoadLimits& caps) {
   const nlohmann::json doc = json_input::parse(text, source);
   Scene scene = read_scene(JsonNode(doc, source), caps);
   scene.source = source;
+  scene.max_pairs = caps.max_pairs;
+  const std::vector<RigidBody> bodies = make_bodies(scene);
   if (!scene.allow_initial_overlap) {
-    const std::vector<RigidBody> bodies = make_bodies(scene);
     check_ground_overlap(scene, bodies);
     check_body_overlap(scene, bodies);
   }
+  check_pair_cap(scene, bodies);
   return scene;
 }
 
 Scene load_scene(const std::string& path, const LoadLimits& caps) {
-  return parse_scene(json_input::read_text_file(path), path, caps);
+  return parse_scene(json_input::read_text_file(path, caps.max_input_bytes), path, caps);
 }
 
 }  // namespace boxpile

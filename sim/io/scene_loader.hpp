@@ -14,6 +14,8 @@ namespace boxpile {
 // Caps on what a scene may ask for (sim/limits.hpp); the command line can raise them.
 struct LoadLimits {
   std::size_t max_bodies = limits::kDefaultMaxBodies;
+  std::size_t max_pairs = limits::kDefaultMaxPairs;            // overlapping pairs at the start
+  std::size_t max_input_bytes = limits::kDefaultMaxInputBytes;  // of the file
 };
 
 // Reads and validates the scene file at `path`.

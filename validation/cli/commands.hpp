@@ -35,6 +35,7 @@ struct ContactsOptions {
   std::string format;                // "table" or "json"; empty: table on a terminal
   bool serve = false;
   std::string engine = "own";        // the detector that answers under --serve
+  std::size_t max_input_bytes = limits::kDefaultMaxInputBytes;
 };
 void add_contacts_command(CLI::App& app, ContactsOptions& options);
 int run_contacts(const ContactsOptions& options);
@@ -55,6 +56,7 @@ struct ConformOptions {
   int keep = 0;                      // failures saved per kind; add_conform_command sets kDefaultKeep
   bool progress = false;             // progress on stderr even when it is no terminal
   std::string report;
+  std::size_t max_input_bytes = limits::kDefaultMaxInputBytes;
 };
 void add_conform_command(CLI::App& app, ConformOptions& options);
 int run_conform_command(const ConformOptions& options);
@@ -96,6 +98,7 @@ int run_compare_command(const CompareOptions& options);
 struct ViewOptions {
   std::string input;
   std::string out;  // empty: beside the input
+  std::size_t max_input_bytes = limits::kDefaultMaxInputBytes;
 };
 void add_view_command(CLI::App& app, ViewOptions& options);
 int run_view(const ViewOptions& options);
@@ -113,6 +116,7 @@ struct SweepOptions {
   std::string shard = "1/1";
   int jobs = 1;
   std::vector<std::string> merge_inputs;  // sweep-merge: shard report directories
+  RunLimits limits;
 };
 void add_sweep_command(CLI::App& app, SweepOptions& options);
 int run_sweep_command(const SweepOptions& options);
@@ -126,6 +130,7 @@ struct StabilityOptions {
   std::vector<std::string> scenes;   // empty: the catalogue (fixtures/hard/)
   std::vector<std::string> set;      // "ENGINE.KEY=VALUE" (the prefix optional when one engine runs)
   std::string report = "boxpile-stability";
+  RunLimits limits;
 };
 void add_stability_command(CLI::App& app, StabilityOptions& options);
 int run_stability_command(const StabilityOptions& options);

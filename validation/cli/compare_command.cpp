@@ -2,6 +2,7 @@
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/time_steps.hpp"
+#include "boxpile/validation/cli/activity.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/cli/report_command.hpp"
@@ -42,8 +43,18 @@ int run_compare_command(const CompareOptions& options) {
   // Before the run (before even loading): a report directory that cannot be written fails now,
   // not after minutes.
   ReportDirectory dir(options.report, {options.scene}, kReportJson);
-  Scene scene = load_scene(options.scene, options.limits.load());
+  std::optional<Scene> loaded;
+  {
+    const Activity loading("loading " + options.scene);
+    loaded.emplace(load_scene(options.scene, options.limits.load()));
+  }
+  Scene& scene = *loaded;
   apply_time_options(scene, options.dt, options.duration, options.limits);
+  check_engines_differ(settings.engines, scene, "--engines");
+  for (const std::string& engine : settings.engines) {
+    check_run_work(scene, engine, settings.settings_of(engine), options.limits, options.dt.has_value());
+  }
+  const Activity running("comparing " + std::to_string(settings.engines.size()) + " engines on " + options.scene);
 
   ProgressPrinter progress;
   settings.progress = [&progress](const CompareProgress& p) {

@@ -10,6 +10,7 @@
 #include "boxpile/validation/collider_process.hpp"
 #include "boxpile/validation/conform_report.hpp"
 #include "boxpile/validation/data_directory.hpp"
+#include "boxpile/validation/format_number.hpp"
 #include "boxpile/validation/judge/check_collider.hpp"
 
 namespace boxpile::cli {
@@ -19,6 +20,10 @@ namespace {
 constexpr const char* kNoCases = "none";
 // More pairs than a day of a slow collider's answers is a typo.
 constexpr int kMaxSamples = 100'000'000;
+// Seconds per answer: a millisecond is the least a process answers in through a pipe (below it
+// every answer would time out), a day the most that is still a timeout rather than none.
+constexpr double kMinTimeout = 1e-3;
+constexpr double kMaxTimeout = 86'400.0;
 
 // More failures kept whole per kind than anyone reads is a typo.
 constexpr int kMaxKeep = 1'000'000;
@@ -67,7 +72,7 @@ CheckOptions check_options(const ConformOptions& options, const std::string& cas
     check.regimes.clear();
     for (const std::string& name : options.regimes) check.regimes.push_back(*regime_from_name(name));
   }
-  if (!cases.empty()) check.cases = load_cases(cases);
+  if (!cases.empty()) check.cases = load_cases(cases, options.max_input_bytes);
   check.swap = !options.no_swap;
   check.keep = options.keep;
   check.tolerances = std::get<JudgeTolerances>(parse_tolerance(options.tolerance));
@@ -86,15 +91,16 @@ void add_conform_command(CLI::App& app, ConformOptions& options) {
                   "(run through /bin/sh)")
       ->required();
   cmd->add_option("--samples", options.samples, "Random pose pairs")->check(CLI::Range(0, kMaxSamples))->capture_default_str();
-  cmd->add_option("--seed", options.seed, "Seed of the random pose pairs")->capture_default_str();
+  cmd->add_option("--seed", options.seed, "Seed of the random pose pairs, a whole number >= 0")
+      ->check(whole_number())
+      ->capture_default_str();
   cmd->add_option("--cases", options.cases,
                   "Folder of contact queries judged first (default: the installed fixtures/contacts; \"none\": "
                   "no fixed cases)");
   cmd->add_option("--regimes", options.regimes, "Comma-separated regimes of the random pairs (default: all)")
       ->delimiter(',')
       ->check(CLI::IsMember(regime_names()));
-  cmd->add_option("--timeout", options.timeout, "Seconds the collider may take per answer")
-      ->check(CLI::PositiveNumber)
+  cmd->add_option("--timeout", options.timeout, "Seconds the collider may take per answer, in [0.001, 86400]")
       ->capture_default_str();
   cmd->add_flag("--no-swap", options.no_swap, "Do not ask each box-box query again with A and B swapped");
   cmd->add_option("--tolerance", options.tolerance,
@@ -114,9 +120,15 @@ void add_conform_command(CLI::App& app, ConformOptions& options) {
   cmd->add_flag("--progress", options.progress,
                 "Show progress and the time left on stderr even when it is not a terminal (on a terminal it is shown anyway)");
   add_report_option(*cmd, options.report, "conform")->required();
+  add_input_limit_option(*cmd, options.max_input_bytes);
 }
 
 int run_conform_command(const ConformOptions& options) {
+  // Checked here, not by a CLI11 range: NaN passes every comparison of one, and the bound of
+  // PositiveNumber prints as 309 digits.
+  if (!(options.timeout >= kMinTimeout && options.timeout <= kMaxTimeout)) {
+    throw UsageError("--timeout: must be a number of seconds in [0.001, 86400], got " + format_number(options.timeout, "%.6g"));
+  }
   ConformRun run;
   run.collider = options.collider;
   run.cases = cases_folder(options);

@@ -185,6 +185,7 @@ void add_contacts_command(CLI::App& app, ContactsOptions& options) {
       ->check(CLI::IsMember(detector_names()))
       ->needs(serve_flag)
       ->capture_default_str();
+  add_input_limit_option(*cmd, options.max_input_bytes);
   serve_flag->excludes(query);
   cmd->callback([&options, query]() {
     if (!options.serve && query->count() == 0) throw CLI::RequiredError("query (or --serve)");
@@ -194,7 +195,7 @@ void add_contacts_command(CLI::App& app, ContactsOptions& options) {
 int run_contacts(const ContactsOptions& options) {
   if (options.serve) return serve(options);
   check_distinct(options.engines, "--engines");
-  const ContactQuery query = load_query(options.query);
+  const ContactQuery query = load_query(options.query, options.max_input_bytes);
   const ContactSets sets = contact_sets(options, query);
   const bool table = options.format.empty() ? isatty(STDOUT_FILENO) == 1 : options.format == kTable;
   if (table) {

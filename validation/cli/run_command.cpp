@@ -7,6 +7,8 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/solver/step_context.hpp"
 #include "boxpile/sim/time_steps.hpp"
+#include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/validation/cli/activity.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/interruptible.hpp"
 #include "boxpile/validation/cli/progress.hpp"
@@ -110,11 +112,18 @@ int run_run(const RunOptions& options) {
   std::optional<OutputFile> out;
   if (options.out) out.emplace(*options.out, std::vector<std::filesystem::path>{options.scene});
   check_engine_name(options.engine);
-  if (options.iterations) check_iterations(*options.iterations, options.limits);
-  Scene scene = load_scene(options.scene, options.limits.load());
+  if (options.iterations) {
+    // A flag the engine has no use for is refused, not ignored.
+    check_has_setting(options.engine, "iterations", "--iterations");
+    check_iterations(*options.iterations, options.limits);
+  }
+  std::optional<Scene> loaded;
+  {
+    const Activity loading("loading " + options.scene);
+    loaded.emplace(load_scene(options.scene, options.limits.load()));
+  }
+  Scene& scene = *loaded;
   apply_time_options(scene, options.dt, options.duration, options.limits);
-  const double dt = scene.time.dt;
-  const long steps = step_count(scene.time);
 
   std::vector<std::string> words = options.set;
   if (options.iterations) words.push_back("iterations=" + std::to_string(*options.iterations));
@@ -124,7 +133,13 @@ int run_run(const RunOptions& options) {
   }
   // Our engine's settings are the scene's: the summary and the recording read the scene it runs.
   scene = scene_with_settings(options.engine, scene, settings);
+  // After the settings: `--set substeps=100000` multiplies the work.
+  check_run_work(scene, options.engine, settings, options.limits, options.dt.has_value());
+  const double dt = scene.time.dt;
+  const long steps = step_count(scene.time);
+  const Activity building("building the " + options.engine + " engine for " + options.scene);
   const std::unique_ptr<Engine> engine = make_engine(options.engine, scene, settings);
+  const Activity running("running " + options.engine + " on " + options.scene);
   const bool record = out.has_value();
 
   Recorder recorder(scene, options.engine);

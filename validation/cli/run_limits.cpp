@@ -1,6 +1,9 @@
 #include "boxpile/validation/cli/run_limits.hpp"
 
+#include <algorithm>
+
 #include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/reference/registry.hpp"
 
@@ -13,11 +16,22 @@ void add_limit_options(CLI::App& cmd, RunLimits& limits, bool iterations) {
   cmd.add_option("--max-bodies", limits.max_bodies, "Refuse a scene of more bodies than this")
       ->check(CLI::Range(std::size_t{1}, std::size_t{100'000'000}))
       ->capture_default_str();
+  cmd.add_option("--max-pairs", limits.max_pairs,
+                  "Refuse a scene or a step with more pairs of touching bodies than this")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1'000'000'000}))
+      ->capture_default_str();
+  add_input_limit_option(cmd, limits.max_input_bytes);
   if (iterations) {
     cmd.add_option("--max-iterations", limits.max_iterations, "Refuse more solver iterations than this")
         ->check(CLI::Range(1, 1'000'000'000))
         ->capture_default_str();
   }
+}
+
+void add_input_limit_option(CLI::App& cmd, std::size_t& max_input_bytes) {
+  cmd.add_option("--max-input-bytes", max_input_bytes, "Refuse an input file larger than this")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 40))
+      ->capture_default_str();
 }
 
 std::string engine_choices() { return available_engines_text(); }
@@ -37,9 +51,29 @@ void add_set_option(CLI::App& cmd, std::vector<std::string>& words) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
+CLI::Validator whole_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+          return "must be a whole number >= 0 in digits, got " + json_input::in_quotes(text);
+        }
+        return "";
+      },
+      "UINT");
+}
+
+namespace {
+
+CLI::Validator non_empty() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string { return text.empty() ? "must be a number, got an empty value" : ""; }, "");
+}
+
+}  // namespace
+
 void add_time_options(CLI::App& cmd, std::optional<double>& dt, std::optional<double>& duration) {
-  cmd.add_option("--dt", dt, "Time step in s, in (0, 1] (default: the scene's)");
-  cmd.add_option("--duration", duration, "Simulated time in s, >= 0 (default: the scene's)");
+  cmd.add_option("--dt", dt, "Time step in s, in (0, 1] (default: the scene's)")->check(non_empty());
+  cmd.add_option("--duration", duration, "Simulated time in s, >= 0 (default: the scene's)")->check(non_empty());
 }
 
 void apply_time_options(Scene& scene, const std::optional<double>& dt, const std::optional<double>& duration,
@@ -56,17 +90,55 @@ void apply_time_options(Scene& scene, const std::optional<double>& dt, const std
   throw InputError(scene.source, on_dt ? "time.dt" : "time.duration", problem->what + hint);
 }
 
+void check_run_work(const Scene& scene, std::string_view engine, const nlohmann::json& settings,
+                    const RunLimits& limits, bool dt_flag, std::string_view dt_source) {
+  if (const std::string problem = engine_time_step_problem(engine, scene, settings); !problem.empty()) {
+    const std::string what = std::string(engine) + ": " + problem;
+    if (dt_flag) throw UsageError(std::string(dt_source) + ": " + what);
+    throw InputError(scene.source, "time.dt", what);
+  }
+  // The plain step count was checked with the time settings.
+  const long per_step = engine_work_per_step(engine, scene, settings);
+  const long steps = step_count(scene.time);
+  if (per_step <= 1 || steps <= limits.max_steps / per_step) return;
+  throw UsageError(std::string(engine) + ": " + std::to_string(steps) + " steps of " + std::to_string(per_step) +
+                   " penalty substeps each, above the cap of " + std::to_string(limits.max_steps) +
+                   " steps (--max-steps raises it; every substep finds and resolves the contacts)");
+}
+
 void check_distinct(const std::vector<std::string>& names, std::string_view flag) {
   for (std::size_t i = 0; i < names.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
-      if (names[i] == names[j]) throw UsageError(std::string(flag) + ": \"" + names[i] + "\" is listed twice");
+      if (names[i] == names[j]) throw UsageError(std::string(flag) + ": " + json_input::in_quotes(names[i]) + " is listed twice");
     }
   }
 }
 
 void check_engines(const std::vector<std::string>& names, std::string_view flag) {
-  for (const std::string& name : names) check_engine_name(name);
+  for (const std::string& name : names) {
+    if (name.empty()) throw UsageError(std::string(flag) + ": an empty engine name (two commas together, or one at an end)");
+    check_engine_name(name);
+  }
   check_distinct(names, flag);
+}
+
+void check_engines_differ(const std::vector<std::string>& names, const Scene& scene, std::string_view flag) {
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string runs_i = engine_runs_as(names[i], scene);
+    for (std::size_t j = 0; j < i; ++j) {
+      if (engine_runs_as(names[j], scene) != runs_i) continue;
+      throw UsageError(std::string(flag) + ": " + json_input::in_quotes(names[j]) + " and " +
+                       json_input::in_quotes(names[i]) + " are one engine on " + scene.source + " (" + runs_i +
+                       ", by its solver.method): list one of them");
+    }
+  }
+}
+
+void check_has_setting(std::string_view engine, std::string_view key, std::string_view flag) {
+  for (const SettingInfo& s : engine_settings(engine))
+    if (s.key == key) return;
+  throw UsageError(std::string(flag) + ": engine " + json_input::in_quotes(engine) + " has no setting " +
+                   json_input::in_quotes(key) + " (`boxpile settings` lists each engine's)");
 }
 
 void check_iterations(int iterations, const RunLimits& limits) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/limits.hpp"
@@ -28,12 +29,17 @@ class UsageError : public std::runtime_error {
 struct RunLimits {
   long max_steps = limits::kDefaultMaxSteps;
   std::size_t max_bodies = limits::kDefaultMaxBodies;
+  std::size_t max_pairs = limits::kDefaultMaxPairs;
+  std::size_t max_input_bytes = limits::kDefaultMaxInputBytes;
   int max_iterations = limits::kDefaultMaxIterations;
-  LoadLimits load() const { return {max_bodies}; }
+  LoadLimits load() const { return {max_bodies, max_pairs, max_input_bytes}; }
 };
 
-// --max-steps and --max-bodies (and --max-iterations when `iterations` is true).
+// --max-steps, --max-bodies, --max-pairs, --max-input-bytes (and --max-iterations when
+// `iterations` is true): every command that runs a scene registers them all.
 void add_limit_options(CLI::App& cmd, RunLimits& limits, bool iterations);
+// --max-input-bytes alone, for the commands that read files but run no scene.
+void add_input_limit_option(CLI::App& cmd, std::size_t& max_input_bytes);
 
 // "own, own-impulse, own-penalty, ode, bullet": the engines make_engine() can build, for help
 // texts (reference/registry.hpp), so that they list exactly the names accepted.
@@ -44,7 +50,12 @@ std::string engine_list(const std::vector<std::string>& names);
 // `--set [ENGINE.]KEY=VALUE`, repeatable (validation/engine_settings.hpp reads the words).
 void add_set_option(CLI::App& cmd, std::vector<std::string>& words);
 
-// --dt and --duration (no CLI11 check: NaN would pass it; apply_time_options checks).
+// A CLI11 check that a value is a whole number >= 0 written in digits (an unsigned option would
+// take "-1" as 2^64 - 1).
+CLI::Validator whole_number();
+
+// --dt and --duration (no CLI11 check: NaN would pass it; apply_time_options checks). An empty
+// value is refused (CLI11 would leave the option unset and the scene's value in force).
 void add_time_options(CLI::App& cmd, std::optional<double>& dt, std::optional<double>& duration);
 
 // Overrides the scene's dt and duration by the flags given, then checks them and the step count
@@ -52,12 +63,29 @@ void add_time_options(CLI::App& cmd, std::optional<double>& dt, std::optional<do
 void apply_time_options(Scene& scene, const std::optional<double>& dt, const std::optional<double>& duration,
                         const RunLimits& limits);
 
+// Before a run of `engine` on `scene` with `settings` (the engine's, checked): a time step the
+// engine can run (the penalty method's stability bound) and the steps times the engine's work per
+// step (the penalty method's substeps: `--set substeps=100000` multiplies the work) within
+// --max-steps. `dt_flag` says that the command line set dt (--dt, or a grid's "dt"): the refusal
+// names `dt_source` then, else the scene's time.dt. UsageError or InputError (exit 2).
+void check_run_work(const Scene& scene, std::string_view engine, const nlohmann::json& settings,
+                    const RunLimits& limits, bool dt_flag, std::string_view dt_source = "--dt");
+
 // Each name once (`--engines own,own` would run and compare an engine with itself): UsageError
 // naming `flag` and the repeated name.
 void check_distinct(const std::vector<std::string>& names, std::string_view flag);
 
 // Engines that make_engine() can build (UnknownEngine otherwise), each once (check_distinct).
 void check_engines(const std::vector<std::string>& names, std::string_view flag);
+
+// Engines that run the same thing on `scene` (reference/registry.hpp, EngineRow::runs_as: "own"
+// is "own-impulse" or "own-penalty" by the scene's solver.method, so `--engines own,own-impulse`
+// would run one engine twice). UsageError naming `flag`, both names and the scene.
+void check_engines_differ(const std::vector<std::string>& names, const Scene& scene, std::string_view flag);
+
+// A flag that stands for one setting of the engine (--iterations): UsageError naming `flag` when
+// `engine` declares no setting `key`, rather than a flag accepted and ignored.
+void check_has_setting(std::string_view engine, std::string_view key, std::string_view flag);
 
 // Solver iterations within [1, max_iterations].
 void check_iterations(int iterations, const RunLimits& limits);

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/cli/activity.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/cli/report_command.hpp"
@@ -51,19 +52,27 @@ void add_stability_command(CLI::App& app, StabilityOptions& options) {
   add_set_option(*cmd, options.set);
   cmd->add_option("--scenes", options.scenes, "Scene files or directories of them (default: fixtures/hard/)");
   add_report_option(*cmd, options.report, "stability");
+  add_limit_options(*cmd, options.limits, false);
 }
 
 int run_stability_command(const StabilityOptions& options) {
   // Every input is checked before the first run: scenes, engines, the report directory.
-  std::vector<Scene> scenes;
-  for (const std::string& file : catalogue_files(options.scenes.empty() ? std::vector<std::string>{data_path("fixtures/hard").string()}
-                                                                        : options.scenes)) {
-    scenes.push_back(load_scene(file));
-  }
   StabilitySettings settings;
   if (!options.engines.empty()) settings.engines = options.engines;
   check_engines(settings.engines, "--engines");
   settings.engine_settings = parse_set_options(options.set, settings.engines);
+  std::vector<Scene> scenes;
+  for (const std::string& file : catalogue_files(options.scenes.empty() ? std::vector<std::string>{data_path("fixtures/hard").string()}
+                                                                        : options.scenes)) {
+    const Activity loading("loading " + file);
+    scenes.push_back(load_scene(file, options.limits.load()));
+    // The caps of run and compare: a scene of 2.4e14 steps is refused, not run until killed.
+    apply_time_options(scenes.back(), std::nullopt, std::nullopt, options.limits);
+    check_engines_differ(settings.engines, scenes.back(), "--engines");
+    for (const std::string& engine : settings.engines) {
+      check_run_work(scenes.back(), engine, settings.settings_of(engine), options.limits, false);
+    }
+  }
   ReportDirectory dir(options.report, {}, kStabilityJson);
 
   StabilityPrinter printer;
@@ -72,6 +81,7 @@ int run_stability_command(const StabilityOptions& options) {
     printer(p);
   };
   std::cerr << "boxpile stability: " << scenes.size() << " scenes in " << settings.engines.size() << " engines\n";
+  const Activity running("running the stability catalogue");
   const std::optional<StabilityResult> result = run_and_report(
       dir, [&] { return run_stability(scenes, settings); }, write_stability_report, stability_summary,
       kStabilityMarkdown);

@@ -8,6 +8,8 @@
 #include <set>
 
 #include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/time_steps.hpp"
+#include "boxpile/validation/cli/activity.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/report_command.hpp"
 #include "boxpile/validation/data_directory.hpp"
@@ -15,6 +17,7 @@
 #include "boxpile/validation/format_number.hpp"
 #include "boxpile/validation/output_safety.hpp"
 #include "boxpile/validation/sweep_report.hpp"
+#include "boxpile/validation/sweep.hpp"
 #include "boxpile/validation/sweep_runner.hpp"
 
 namespace boxpile::cli {
@@ -66,6 +69,23 @@ std::string find_grid(const std::string& grid) {
                                  (known.empty() ? "" : " (installed: " + known + ")"));
 }
 
+// A cell's run within the caps of run and compare, before any cell runs: the step count of the
+// grid's (or the scene's) dt and duration, and the penalty method's substeps and stability bound
+// (`"dt": [1e-9]` or `"duration": 1e9` used to run until killed).
+void check_cell_work(const SweepGrid& grid, const CellSpec& cell, const RunLimits& limits) {
+  const EngineConfig config = cell_config(grid, cell);
+  const Scene& scene = config.scene;
+  const bool grid_dt = !grid.dt.empty();
+  if (const auto problem = check_time_settings(scene.time.dt, scene.time.duration, limits.max_steps)) {
+    const bool on_dt = problem->field == TimeSettingsProblem::Field::Dt;
+    const bool from_grid = on_dt ? grid_dt : (grid_dt || grid.duration.has_value());
+    const std::string what = problem->what + (problem->over_cap ? " (--max-steps raises it)" : "");
+    if (from_grid) throw InputError(grid.source, on_dt || !grid.duration ? "dt" : "duration", what);
+    throw InputError(scene.source, on_dt ? "time.dt" : "time.duration", what);
+  }
+  check_run_work(scene, cell.engine, config.settings, limits, grid_dt, grid.source + ": dt");
+}
+
 }  // namespace
 
 void add_sweep_command(CLI::App& app, SweepOptions& options) {
@@ -80,6 +100,7 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
   cmd->add_option("--jobs", options.jobs, "Run cells in J parallel processes (their timings then ran side by side)")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
+  add_limit_options(*cmd, options.limits, false);
 
   app.add_subcommand("settings", "List every setting each engine exposes to a sweep grid, with units (Markdown)");
 
@@ -87,6 +108,7 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
   merge->add_option("reports", options.merge_inputs, "Shard report directories (each holding sweep.json)")
       ->required();
   merge->add_option("--report", options.report, "Merged report directory")->capture_default_str();
+  add_input_limit_option(*merge, options.limits.max_input_bytes);
 }
 
 int run_sweep_command(const SweepOptions& options) {
@@ -99,11 +121,17 @@ int run_sweep_command(const SweepOptions& options) {
   // Everything is checked before any cell runs: the grid, its scenes, engines and settings, the
   // report directory.
   const std::string grid_file = find_grid(options.grid);
-  const SweepGrid grid = load_grid(grid_file);
   ReportDirectory dir(options.report, {grid_file}, kSweepJson);
+  std::optional<SweepGrid> loaded;
+  {
+    const Activity loading("loading " + grid_file);
+    loaded.emplace(load_grid(grid_file, options.limits.load()));
+  }
+  const SweepGrid& grid = *loaded;
   const std::vector<CellSpec> all = grid_cells(grid);
   std::vector<CellSpec> cells;
   std::copy_if(all.begin(), all.end(), std::back_inserter(cells), [&](const CellSpec& c) { return in_shard(c, shard); });
+  for (const CellSpec& c : cells) check_cell_work(grid, c, options.limits);
 
   SweepReport report;
   report.grid_file = grid_file;
@@ -128,6 +156,7 @@ int run_sweep_command(const SweepOptions& options) {
   run.jobs = options.jobs;
   run.work_dir = dir.staging() / "cells";
   run.progress = print_progress;
+  const Activity running("running the cells of " + grid_file);
   const auto ran = run_and_report(
       dir,
       [&] {
@@ -144,13 +173,18 @@ int run_settings_command() {
 }
 
 int run_sweep_merge_command(const SweepOptions& options) {
+  // The merged report may be none of its inputs (it would replace one before it is read again,
+  // or hold one): checked, as every output, against each input's sweep.json.
+  std::vector<fs::path> input_files;
+  for (const std::string& in : options.merge_inputs) input_files.push_back(fs::path(in) / kSweepJson);
+  ReportDirectory dir(options.report, input_files, kSweepJson);
   std::vector<SweepReport> parts;
-  for (const std::string& in : options.merge_inputs) {
-    const fs::path file = fs::path(in) / kSweepJson;
-    if (!fs::is_regular_file(file)) throw InputError(in, "", "no sweep.json here: not a sweep report");
-    parts.push_back(read_sweep_json(file.string()));
+  for (std::size_t k = 0; k < options.merge_inputs.size(); ++k) {
+    const std::string& in = options.merge_inputs[k];
+    std::error_code ec;
+    if (!fs::is_regular_file(input_files[k], ec)) throw InputError(in, "", "no sweep.json here: not a sweep report");
+    parts.push_back(read_sweep_json(input_files[k].string(), options.limits.max_input_bytes));
   }
-  ReportDirectory dir(options.report, {}, kSweepJson);
   SweepReport merged;
   merged.grid_file = parts.front().grid_file;
   merged.grid = parts.front().grid;

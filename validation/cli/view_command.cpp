@@ -16,28 +16,28 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json read_json(const fs::path& path) {
-  return json_input::parse(json_input::read_text_file(path.string()), path.string());
+nlohmann::json read_json(const fs::path& path, std::size_t max_bytes) {
+  return json_input::parse(json_input::read_text_file(path.string(), max_bytes), path.string());
 }
 
 // A report directory's page data (replay.json), with the marks renewed from its report.json.
-nlohmann::json report_replay(const fs::path& dir) {
+nlohmann::json report_replay(const fs::path& dir, std::size_t max_bytes) {
   const fs::path report = dir / kReportJson, data = dir / kReplayData;
   if (!fs::is_regular_file(report) || !fs::is_regular_file(data)) {
     throw InputError(dir.string(), "", std::string("not a boxpile report directory: it needs report.json and ") +
                                            kReplayData + " (written by boxpile compare)");
   }
-  nlohmann::json replay = read_json(data);
+  nlohmann::json replay = read_json(data, max_bytes);
   check_replay_data(replay, data.string());
   nlohmann::json marks = nlohmann::json::array();
-  for (const ReplayMark& m : marks_from_report(read_json(report))) marks.push_back({{"t", m.t}, {"label", m.label}});
+  for (const ReplayMark& m : marks_from_report(read_json(report, max_bytes))) marks.push_back({{"t", m.t}, {"label", m.label}});
   replay["marks"] = std::move(marks);
   return replay;
 }
 
 // The page's data for one run file (`boxpile run --out`).
-nlohmann::json run_replay(const fs::path& file) {
-  const Recording recording = read_recording(file.string());
+nlohmann::json run_replay(const fs::path& file, std::size_t max_bytes) {
+  const Recording recording = recording_from_json(read_json(file, max_bytes), file.string());
   return replay_data(recording.scene + " (" + recording.engine + ")", {&recording}, {});
 }
 
@@ -55,6 +55,7 @@ void add_view_command(CLI::App& app, ViewOptions& options) {
   cmd->add_option("input", options.input, "A run file (JSON) or a report directory")->required();
   cmd->add_option("--out", options.out,
                   "The page to write (default: replay.html in a report directory, RUN.html beside a run file)");
+  add_input_limit_option(*cmd, options.max_input_bytes);
 }
 
 int run_view(const ViewOptions& options) {
@@ -67,7 +68,7 @@ int run_view(const ViewOptions& options) {
     throw InputError(out.string(), "", "the page would replace its own input");
   }
   OutputFile page(out, view_inputs(input, directory));  // checked and staged before any work
-  const nlohmann::json data = directory ? report_replay(input) : run_replay(input);
+  const nlohmann::json data = directory ? report_replay(input, options.max_input_bytes) : run_replay(input, options.max_input_bytes);
   write_replay_page(data, load_three_js(), page);
   std::cout << "replay: " << fs::absolute(out).lexically_normal().string() << '\n';
   return kExitOk;

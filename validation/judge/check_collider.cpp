@@ -175,7 +175,7 @@ std::vector<Finding> judge_query(const ContactQuery& query, const Manifold& answ
   return judge_box_box(a, query.b->box(), answer, swapped, tol);
 }
 
-std::vector<ContactQuery> load_cases(const std::string& folder) {
+std::vector<ContactQuery> load_cases(const std::string& folder, std::size_t max_bytes) {
   namespace fs = std::filesystem;
   if (!fs::is_directory(folder)) throw InputError(folder, "", "is not a folder of contact queries");
   std::vector<fs::path> files;
@@ -185,7 +185,7 @@ std::vector<ContactQuery> load_cases(const std::string& folder) {
   std::sort(files.begin(), files.end());
   std::vector<ContactQuery> cases;
   for (const fs::path& f : files) {
-    ContactQuery q = load_query(f.string());
+    ContactQuery q = load_query(f.string(), max_bytes);
     if (q.name.empty()) q.name = f.stem().string();
     cases.push_back(std::move(q));
   }

@@ -110,6 +110,6 @@ ContactQuery swapped_query(const ContactQuery& query);
 std::vector<Finding> judge_query(const ContactQuery& query, const Manifold& answer,
                                  const std::optional<Manifold>& swapped, const JudgeTolerances& tol = {});
 // Every *.json query in a folder, by file name; InputError for a file that is no query.
-std::vector<ContactQuery> load_cases(const std::string& folder);
+std::vector<ContactQuery> load_cases(const std::string& folder, std::size_t max_bytes = limits::kDefaultMaxInputBytes);
 
 }  // namespace boxpile
