@@ -23,6 +23,20 @@ constexpr double kMarginPerEdge = 0.01;
 constexpr double kSlopPerEdge = 1e-3;
 }  // namespace
 
+void set_impulse_variant(SolverSettings& solver, CollisionSettings& collision, ImpulseVariant variant) {
+  const SolverSettings ours;  // every addition at our default
+  const bool on = variant == ImpulseVariant::Boxpile;
+  solver.variant = variant;
+  solver.pair_impulses = on;
+  solver.accumulated_impulses = on;
+  solver.speculative_contacts = on;
+  solver.sticking_solves = on;
+  solver.shock_propagation = on;  // the lab text's bonus: a switch of its own
+  solver.penetration_recovery = on ? ours.penetration_recovery : 0.0;
+  solver.integrator = on ? ours.integrator : PositionIntegrator::ExplicitEuler;
+  collision.reuse_contacts = on && CollisionSettings{}.reuse_contacts;
+}
+
 double contact_margin_for(const SolverSettings& s, double smallest_edge) {
   return std::min(s.contact_margin, kMarginPerEdge * smallest_edge);
 }

@@ -47,6 +47,9 @@ struct CollisionSettings {
 
 enum class ContactSolver { Impulse, Penalty };
 enum class PositionIntegrator { ExplicitEuler, SemiImplicitEuler };
+// The impulse method as a whole: ours (every addition below on), or the method exactly as the lab
+// text gives it (every addition off; docs/solver.md, "The lab method and our additions").
+enum class ImpulseVariant { Boxpile, Lab };
 
 // The penalty method's settings (docs/penalty.md). Each one left unset is derived from the
 // scene when the world is built (sim/solver/penalty_parameters.hpp).
@@ -60,6 +63,15 @@ struct PenaltySettings {
 struct SolverSettings {
   ContactSolver method = ContactSolver::Impulse;
   PenaltySettings penalty;  // read only by the penalty method
+  // The impulse method's variant; choosing one sets each addition of ours to that variant's value
+  // (set_impulse_variant), and an addition given beside it changes it from there.
+  ImpulseVariant variant = ImpulseVariant::Boxpile;
+  // Our additions to the lab text's method, each one a switch (docs/solver.md). Off, the stage is
+  // the lab text's:
+  bool pair_impulses = true;         // collision loop: a pair's points solved together (off: one by one)
+  bool accumulated_impulses = true;  // resting phases: projected Gauss-Seidel (off: push-only impulses)
+  bool speculative_contacts = true;  // points up to a margin apart are contacts (off: touching points only)
+  bool sticking_solves = true;       // shock propagation solves groups that stick directly (off: passes only)
   int collision_passes = 5;       // GBF collision loop passes (5-10)
   int contact_passes = 10;        // GBF contact loop passes, restitution ramped -0.9 -> 0 (10-20)
   bool shock_propagation = true;  // GBF shock propagation after the contact loop
@@ -76,6 +88,12 @@ struct SolverSettings {
   double penetration_slop = 1e-4;     // m: overlaps this shallow are left alone
   int recovery_passes = 20;  // most per group of a phase (each shock level, then all contacts), fewer once converged
 };
+
+// Sets `variant` and every addition of ours to that variant's value: Boxpile turns each one on
+// (with semi-implicit Euler, penetration recovery 0.2, shock propagation and contacts kept at
+// rest), Lab turns each one off (explicit Euler, no recovery, no shock propagation, every pair
+// tested at every step).
+void set_impulse_variant(SolverSettings& solver, CollisionSettings& collision, ImpulseVariant variant);
 
 // The contact margin and penetration slop for boxes whose smallest edge is `smallest_edge` (m):
 // the settings' values, or less for small boxes (docs/solver.md, "Lengths relative to the boxes").

@@ -64,7 +64,13 @@ void World::update_margins(double dt) {
   // Each body's speculative margin: the contact margin (the scene's, or less for small boxes)
   // plus how far any of its points can move in one step, (|v| + |omega| r) dt, so that a fast body
   // meets what it would reach within the step as a speculative contact instead of tunnelling
-  // into it. A pair gets the smaller of its two contact margins and both motions.
+  // into it. A pair gets the smaller of its two contact margins and both motions. Without
+  // speculative contacts (the lab text's impulse method) only touching points are contacts.
+  if (scene_.solver.method == ContactSolver::Impulse && !scene_.solver.speculative_contacts) {
+    std::fill(base_margins_.begin(), base_margins_.end(), 0.0);
+    std::fill(margins_.begin(), margins_.end(), 0.0);
+    return;
+  }
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const RigidBody& b = bodies_[i];
     base_margins_[i] = std::max(scene_.collision.margin, contact_margin_for(scene_.solver, smallest_edge_[i]));

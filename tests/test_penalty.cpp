@@ -171,6 +171,95 @@ TEST_CASE("on an incline, static friction below tan(theta) slides at g (sin - mu
   CHECK(std::abs(a - expected) <= 0.03 * expected);
 }
 
+namespace {
+
+// A unit box (1 kg) placed at rest on an incline of `degrees`, touching it exactly, mu_s and mu_d
+// as given (the incline_stick fixture turned to the angle).
+Scene incline(double degrees, double mu_s, double mu_d) {
+  Scene s = penalty(fixture("incline_stick"));
+  const double t = degrees * M_PI / 180.0;
+  s.ground->normal = Vec3(-std::sin(t), 0.0, std::cos(t));
+  s.bodies[0].frame.position = 0.5 * s.ground->normal;
+  s.bodies[0].frame.orientation = Quat(Eigen::AngleAxisd(-t, Vec3::UnitY()));
+  s.material.static_friction = mu_s;
+  s.material.friction = mu_d;
+  return s;
+}
+
+Vec3 down_slope(const Scene& s) { return Vec3(s.ground->normal.z(), 0.0, -s.ground->normal.x()) * -1.0; }
+
+}  // namespace
+
+TEST_CASE("static friction holds a box placed at rest on a slope from its first contact on", "[penalty][friction]") {
+  // 25 degrees (tan = 0.466), mu_s 0.6 above it, mu_d 0.3 below: the box must not slide (the
+  // dynamic slide would be g (sin - mu_d cos) t^2 / 2 = 2.96 m in 2 s). It only settles into its
+  // springs, within 0.5 s: its corners' normal and friction springs carry m g cos and m g sin
+  // (m g / (4 k) = 1 mm in all with k_f = k), the box tilts by the downhill corners' larger load
+  // (the centre 0.42 mm further), and the uphill corners, loaded with (cos - sin) m g / 4, slip until
+  // the downhill ones carry the rest (0.28 mm more): 1.45 mm by that account, 1.48 mm measured,
+  // bounded here by twice m g / (4 k). Then it stays.
+  const Scene s = incline(25.0, 0.6, 0.3);
+  const PenaltyParameters p = derive_penalty_parameters(s);
+  World w(s);
+  const Vec3 start = w.bodies()[0].x;
+  run(w, 0.5);
+  const Vec3 settled = w.bodies()[0].x;
+  const auto slid_early = w.counters().penalty.sliding_points;
+  run(w, 1.5);
+  const double moved = (w.bodies()[0].x - start).norm();
+  const double creep = (w.bodies()[0].x - settled).norm();
+  const double settle = s.bodies[0].mass * kG / (4.0 * p.stiffness);
+  INFO("moved " << moved << " m in 2 s, the springs' settling " << settle << " m; crept " << creep
+                << " m after 0.5 s; sliding point-steps " << slid_early << " then " << w.counters().penalty.sliding_points);
+  CHECK(moved < 2.0 * settle);
+  CHECK(creep < 1e-5);
+  CHECK(w.bodies()[0].v.norm() < 1e-6);
+}
+
+TEST_CASE("a box sliding to rest under the static cone sticks again", "[penalty][friction]") {
+  // Launched at 1 m/s down a 25 degree slope with mu_d 0.55 > tan 25 = 0.466: it brakes at
+  // a = g (mu_d cos - sin) = 0.744 m/s^2, stops after v0^2 / (2 a) = 0.672 m and 1.34 s, and then
+  // stays (mu_s 0.6 holds it).
+  Scene s = incline(25.0, 0.6, 0.55);
+  const Vec3 down = down_slope(s);
+  s.bodies[0].velocity = down;
+  World w(s);
+  const Vec3 start = w.bodies()[0].x;
+  const double t = 25.0 * M_PI / 180.0;
+  const double a = kG * (0.55 * std::cos(t) - std::sin(t));
+  run(w, 2.0);
+  const Vec3 stopped = w.bodies()[0].x;
+  const double slid = (stopped - start).dot(down);
+  run(w, 1.0);
+  const double creep = (w.bodies()[0].x - stopped).norm();
+  INFO("slid " << slid << " m (expected " << 1.0 / (2.0 * a) << "), then crept " << creep << " m in 1 s");
+  CHECK(std::abs(slid - 1.0 / (2.0 * a)) <= 0.03 / (2.0 * a));
+  CHECK(creep < 1e-5);
+  CHECK(w.bodies()[0].v.norm() < 1e-4);
+}
+
+TEST_CASE("a damper past the explicit bound is integrated implicitly: a stack of 5 settles", "[penalty]") {
+  // Damping 450 N s/m per point, stiffness 1e5 N/m, 10 substeps: c h / m = 1.5 for a point
+  // between two boxes (m = 1/8 kg), past the explicit damper's bound 1, where it reversed the
+  // point every substep (the bottom box rang at 1.35 cm/s for 4.5 s). It settles to the springs'
+  // sink, level j from the top carrying j boxes on 4 corners: sum j m g / (4 k).
+  Scene s = penalty(fixture("stack_5"));
+  s.solver.penalty.damping = 450.0;
+  s.solver.penalty.stiffness = 1e5;
+  s.solver.penalty.substeps = 10;
+  World w(s);
+  const double z0 = w.bodies().back().x.z();
+  run(w, 4.5);
+  double fastest = 0.0;
+  for (const RigidBody& b : w.bodies()) fastest = std::max(fastest, b.v.norm());
+  double expected = 0.0;
+  for (int j = 1; j <= 5; ++j) expected += j * kG / (4.0 * 1e5);
+  const double sink = z0 - w.bodies().back().x.z();
+  INFO("fastest " << fastest << " m/s after 4.5 s; top sank " << sink << " m, expected " << expected);
+  CHECK(fastest < 1e-6);
+  CHECK(std::abs(sink - expected) <= 0.05 * expected);
+}
+
 TEST_CASE("energy never rises in a damped resting stack", "[penalty]") {
   // One penalty step per scene step (dt = the derived h), so that the contact set a step reports
   // (found at its start) belongs to the state the step before left: E_k = kinetic + potential

@@ -28,7 +28,45 @@ const SettingsTable<Scene>& own_settings_table() {
   using S = Scene;
   const std::string impulse(kImpulse), penalty(kPenalty);
   static const SettingsTable<Scene> table{
-      // The impulse method (docs/solver.md).
+      // The impulse method (docs/solver.md). Its variant comes first: it sets every addition
+      // below, and the table applies its rows in order, so an addition given beside it wins.
+      {{.key = "variant", .kind = Kind::Choice,
+        .what = "the impulse method: \"boxpile\" (ours, every addition on) or \"lab\" (the lab text's, every "
+                "addition off: pair_impulses, accumulated_impulses, speculative_contacts, sticking_solves, "
+                "shock_propagation, reuse_contacts off, penetration_recovery 0, integrator explicit_euler); "
+                "additions given beside it apply after it",
+        .choices = {"boxpile", "lab"}, .scene_key = "solver.variant", .group = impulse},
+       [](S& s, const json& v) {
+         set_impulse_variant(s.solver, s.collision,
+                             v.get<std::string>() == "lab" ? ImpulseVariant::Lab : ImpulseVariant::Boxpile);
+       },
+       [](const S& s) { return json(s.solver.variant == ImpulseVariant::Lab ? "lab" : "boxpile"); }},
+      {{.key = "pair_impulses", .kind = Kind::Boolean,
+        .what = "collision loop: the approaching points of a pair get their normal impulses from one system "
+                "(a flat landing stays flat); off: push-only Newton-Coulomb impulses point by point (the lab text)",
+        .scene_key = "solver.pair_impulses", .group = impulse},
+       [](S& s, const json& v) { s.solver.pair_impulses = v.get<bool>(); },
+       [](const S& s) { return json(s.solver.pair_impulses); }},
+      {{.key = "accumulated_impulses", .kind = Kind::Boolean,
+        .what = "contact loop and shock propagation: each contact's impulse accumulated over the phase and "
+                "projected on the friction cone (may take back what it gave); off: push-only impulses with "
+                "the ramped restitution on the present u_n (the lab text)",
+        .scene_key = "solver.accumulated_impulses", .group = impulse},
+       [](S& s, const json& v) { s.solver.accumulated_impulses = v.get<bool>(); },
+       [](const S& s) { return json(s.solver.accumulated_impulses); }},
+      {{.key = "speculative_contacts", .kind = Kind::Boolean,
+        .what = "points up to contact_margin (or collision_margin) plus a step's motion apart are contacts that "
+                "may close their gap in the step; off: touching or overlapping points only, both margins "
+                "unused (the lab text)",
+        .scene_key = "solver.speculative_contacts", .group = impulse},
+       [](S& s, const json& v) { s.solver.speculative_contacts = v.get<bool>(); },
+       [](const S& s) { return json(s.solver.speculative_contacts); }},
+      {{.key = "sticking_solves", .kind = Kind::Boolean,
+        .what = "shock propagation: a group of a level whose touching points can all stick is solved "
+                "directly (least squares); off: every group by passes",
+        .scene_key = "solver.sticking_solves", .group = impulse},
+       [](S& s, const json& v) { s.solver.sticking_solves = v.get<bool>(); },
+       [](const S& s) { return json(s.solver.sticking_solves); }},
       {{.key = "collision_passes", .kind = Kind::Integer, .what = "passes of the collision loop", .min = 1,
         .max = kMaxSolverPasses, .scene_key = "solver.collision_passes", .group = impulse},
        [](S& s, const json& v) { s.solver.collision_passes = v.get<int>(); },

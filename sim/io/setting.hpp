@@ -83,13 +83,13 @@ class SettingsTable {
     return nullptr;
   }
   // Applies settings {key: value}, each already checked against this table (a key it does not
-  // declare is a programming error: std::invalid_argument).
+  // declare is a programming error: std::invalid_argument), in the table's row order whatever
+  // the order of `values` (a row that sets others, as our impulse variant does, comes first).
   void apply(S& settings, const nlohmann::json& values) const {
-    for (const auto& [key, value] : values.items()) {
-      const Setting<S>* row = find(key);
-      if (!row) throw std::invalid_argument("no setting \"" + key + "\"");
-      row->apply(settings, value);
-    }
+    for (const auto& [key, value] : values.items())
+      if (!find(key)) throw std::invalid_argument("no setting \"" + key + "\"");
+    for (const Setting<S>& row : rows_)
+      if (const auto v = values.find(row.info.key); v != values.end()) row.apply(settings, *v);
   }
   // `defaults` with settings {key: value} applied.
   S make(const nlohmann::json& values, S defaults = S{}) const {

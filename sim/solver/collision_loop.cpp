@@ -31,6 +31,42 @@ void record_events(const std::vector<SolverContact>& contacts, double time, doub
   }
 }
 
+// The lab text's pass: each active point in turn takes the Newton-Coulomb impulse of its present
+// approach (push-only), the bodies' velocities updated at once. Returns whether a point was active.
+bool sequential_pass(SolverBodies& sb, std::vector<SolverContact>& contacts, bool restitution, bool friction,
+                     double dt, ImpulseCounters& counters) {
+  bool any_active = false;
+  for (SolverContact& c : contacts) {
+    if (!c.active) continue;
+    any_active = true;
+    const Vec3 u = sb.relative_velocity(c);
+    if (c.n.dot(u) >= allow_gap(c, 0.0, dt)) continue;  // not approaching (or closing no gap in the step)
+    const Vec3 j = newton_coulomb_impulse(c, u, restitution ? c.restitution : 0.0, friction, counters);
+    sb.apply(c, j, true, true);
+    c.collision_impulse += j.dot(c.n);
+  }
+  return any_active;
+}
+
+// Our pass: each pair's points solved together (pair_impulse.hpp), so that a face landing flat
+// stays flat. The points of one pair are consecutive in the contact set.
+bool pair_pass(SolverBodies& sb, std::vector<SolverContact>& contacts, bool restitution, bool friction,
+               ImpulseCounters& counters) {
+  bool any_active = false;
+  for (std::size_t first = 0; first < contacts.size();) {
+    std::size_t last = first + 1;
+    while (last < contacts.size() && contacts[last].a == contacts[first].a && contacts[last].b == contacts[first].b)
+      ++last;
+    const std::span<SolverContact> pair(contacts.data() + first, last - first);
+    if (std::any_of(pair.begin(), pair.end(), [](const SolverContact& c) { return c.active; })) {
+      any_active = true;
+      pair_collision_impulses(sb, pair, restitution, friction, counters);
+    }
+    first = last;
+  }
+  return any_active;
+}
+
 }  // namespace
 
 void collision_loop(ImpulseStep& step) {
@@ -47,29 +83,20 @@ void collision_loop(ImpulseStep& step) {
   StepStats& stats = step.world.stats;
   std::vector<CollisionEvent>& events = step.world.events;
   assert(passes <= kMaxSolverPasses);
+  const bool together = scene.solver.pair_impulses;
   // A point still apart collides in this step only if it would close its gap within the step;
   // decided once, before any impulse, so that the points of one face landing together all take
-  // part even after the first of them has slowed the body.
+  // part even after the first of them has slowed the body. The lab text's loop starts from every
+  // point and lets each pass's impulses decide (a point that does not approach takes none).
   for (SolverContact& c : contacts) {
     c.start_un = c.n.dot(sb.relative_velocity(c));
-    c.active = c.start_un < std::min(allow_gap(c, 0.0, dt), -kCollisionSpeedMin);
+    c.active = together ? c.start_un < std::min(allow_gap(c, 0.0, dt), -kCollisionSpeedMin)
+                        : c.start_un < allow_gap(c, 0.0, dt) || c.depth >= 0.0;
     c.collision_impulse = 0.0;
   }
   for (int pass = 0; pass < passes; ++pass) {
-    bool any_active = false;
-    // The points of one pair are consecutive in the contact set: each pair's points are solved
-    // together (pair_impulse.hpp), so that a face landing flat stays flat.
-    for (std::size_t first = 0; first < contacts.size();) {
-      std::size_t last = first + 1;
-      while (last < contacts.size() && contacts[last].a == contacts[first].a && contacts[last].b == contacts[first].b)
-        ++last;
-      const std::span<SolverContact> pair(contacts.data() + first, last - first);
-      if (std::any_of(pair.begin(), pair.end(), [](const SolverContact& c) { return c.active; })) {
-        any_active = true;
-        pair_collision_impulses(sb, pair, restitution, friction, counters);
-      }
-      first = last;
-    }
+    const bool any_active = together ? pair_pass(sb, contacts, restitution, friction, counters)
+                                     : sequential_pass(sb, contacts, restitution, friction, dt, counters);
     if (!any_active) break;
     // Drop the contacts that now separate: they take no part in the coming passes. The largest
     // approach among those kept is the pass's residual.

@@ -10,6 +10,7 @@ void contact_loop(ImpulseStep& step) {
   sb.gather(step.sb.bodies);
   const int passes = step.settings().contact_passes;
   const double dt = step.dt();
+  const bool accumulated = step.settings().accumulated_impulses;
   assert(passes <= kMaxSolverPasses);
   for (SolverContact& c : step.contacts) begin_resting_phase(c, sb.relative_velocity(c));
   for (int pass = 0; pass < passes; ++pass) {
@@ -23,8 +24,13 @@ void contact_loop(ImpulseStep& step) {
     for (SolverContact& c : step.contacts) {
       const Vec3 u = sb.relative_velocity(c);
       residual = std::max(residual, allow_gap(c, 0.0, dt) - c.n.dot(u));
-      const double target = allow_gap(c, c.start_un < 0.0 ? -e * c.start_un : 0.0, dt);
-      const Vec3 j = resting_impulse(c, u, target, step.friction(), step.counters());
+      // Ours asks u_n >= -e_k u_n(start) of the impulse accumulated over the phase; the lab
+      // text's gives the push-only Newton-Coulomb impulse of restitution e_k on the present u_n
+      // (u_n >= -e_k u_n, a speculative point's gap allowed for as in ours).
+      const double approach_un = accumulated ? c.start_un : c.n.dot(u);
+      const double target = allow_gap(c, approach_un < 0.0 ? -e * approach_un : 0.0, dt);
+      const Vec3 j = accumulated ? resting_impulse(c, u, target, step.friction(), step.counters())
+                                 : push_impulse(c, u, target, step.friction(), step.counters());
       if (!is_exact_zero(j)) sb.apply(c, j);  // a zero impulse would leave every velocity as it is
     }
     step.stats().contact_residual[pass] = residual;

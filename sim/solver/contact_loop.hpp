@@ -6,7 +6,9 @@
 namespace boxpile {
 
 // Contact loop: `contact_passes` passes over every contact of the step's set, restitution ramped
-// e_k = -1 + (k + 1) / passes (from -1 + 1/n up to 0), nothing removed.
+// e_k = -1 + (k + 1) / passes (from -1 + 1/n up to 0), nothing removed. With
+// accumulated_impulses a projected Gauss-Seidel over the phase's impulses; without, the lab
+// text's push-only Newton-Coulomb impulses.
 void contact_loop(ImpulseStep& step);
 
 }  // namespace boxpile

@@ -61,17 +61,24 @@ void set_collision_matrix(SolverContact& c, const Mat3& K) {
 
 Vec3 newton_coulomb_impulse(const SolverContact& c, const Vec3& u, double e, bool friction,
                             ImpulseCounters& counters) {
-  const Mat3& K = c.K;
   const double un = c.n.dot(u);
   if (un >= 0.0) return Vec3::Zero();
+  return push_impulse(c, u, -e * un, friction, counters);
+}
+
+Vec3 push_impulse(const SolverContact& c, const Vec3& u, double target_un, bool friction, ImpulseCounters& counters) {
+  const Mat3& K = c.K;
+  const double un = c.n.dot(u);
+  if (un >= target_un) return Vec3::Zero();
   ++counters.normal_impulses;
-  // Frictionless: j = j_n n with n . K j = -(1 + e) u_n.
-  auto frictionless = [&] { return Vec3((-(1.0 + e) * un / c.n.dot(K * c.n)) * c.n); };
+  const double gain = target_un - un;  // the change of u_n asked for, > 0
+  // Frictionless: j = j_n n with n . K j = gain.
+  auto frictionless = [&] { return Vec3((gain / c.n.dot(K * c.n)) * c.n); };
   if (!friction || c.friction <= 0.0) return frictionless();
 
   ++counters.friction_evaluations;
-  // Sticking impulse: K j = -e u_n n - u.
-  const Vec3 j = c.Kinv * (-e * un * c.n - u);
+  // Sticking impulse: K j = target_un n - u.
+  const Vec3 j = c.Kinv * (target_un * c.n - u);
   const double jn = j.dot(c.n);
   const Vec3 jt = j - jn * c.n;
   if (jn >= 0.0 && jt.norm() <= c.friction * jn) return j;
@@ -90,7 +97,7 @@ Vec3 newton_coulomb_impulse(const SolverContact& c, const Vec3& u, double e, boo
   const Vec3 dir = c.n - c.friction * t;
   const double denom = c.n.dot(K * dir);
   if (denom <= 0.0) return frictionless();
-  return (-(1.0 + e) * un / denom) * dir;
+  return (gain / denom) * dir;
 }
 
 void begin_resting_phase(SolverContact& c, const Vec3& u) {

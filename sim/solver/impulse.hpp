@@ -76,9 +76,15 @@ void set_collision_matrix(SolverContact& c, bool a_moves, bool b_moves);
 void set_collision_matrix(SolverContact& c, const Mat3& K);
 
 // The impulse on A for relative velocity u, restitution e, friction on or off, with c.K.
-// Returns zero when the point does not approach (u_n >= 0).
+// Returns zero when the point does not approach (u_n >= 0). The lab text's impulse: its
+// collision loop (without pair_impulses) and, with the ramped e, its contact loop (without
+// accumulated_impulses).
 Vec3 newton_coulomb_impulse(const SolverContact& c, const Vec3& u, double e, bool friction,
                             ImpulseCounters& counters);
+// The push-only impulse that brings the point's normal velocity up to `target_un` (sticking, or on
+// the cone's edge when sticking would leave it); zero when u_n >= target_un already. Newton-Coulomb
+// with restitution e is target_un = -e u_n.
+Vec3 push_impulse(const SolverContact& c, const Vec3& u, double target_un, bool friction, ImpulseCounters& counters);
 
 // Starts a resting phase at a contact whose relative velocity is u: records u_n, clears the
 // accumulated impulse, and fixes the sliding direction (zero when the point barely slides).

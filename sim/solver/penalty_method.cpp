@@ -15,6 +15,17 @@ double point_mass(const RigidBody& a, const RigidBody& b) {
   const double inv = a.inv_mass + b.inv_mass;
   return 1.0 / (inv * kPointsPerSupport);
 }
+// The damper a point gets in a step of length h. Explicit (read at the step's start), a damper c
+// on a point of mass m changes its velocity by a factor 1 - c h / m per step: past c h / m = 1 it
+// reverses the point every step and the velocity rings at full size while the position stays (a
+// stack of 5 with c = 450 N s/m and 10 substeps showed 1.35 cm/s at every frame). There it is
+// integrated implicitly instead, its force read at the step's end velocity: the factor is
+// 1 / (1 + c h / m), so the damper is c / (1 + c h / m), which never reverses a point.
+double stable_damper(double c, double m, double h) {
+  const double x = c * h / m;
+  return x > 1.0 ? c / (1.0 + x) : c;
+}
+
 }  // namespace
 
 PenaltyMethod::PenaltyMethod(const PenaltyParameters& parameters, std::size_t body_count)
@@ -55,8 +66,10 @@ void PenaltyMethod::apply_contact_forces(StepContext& ctx) {
     pt.depth = bc.contact.depth;
     pt.u = a.v + a.omega.cross(ra) - b.v - b.omega.cross(rb);
     pt.stiffness = parameters_.stiffness;
-    pt.damping = parameters_.damping.value_or(point_damping(
-        parameters_.stiffness, point_mass(a, b), damping_ratio_for_restitution(restitution ? m.restitution : 0.0)));
+    const double mass = point_mass(a, b);
+    pt.damping = stable_damper(parameters_.damping.value_or(point_damping(
+                                   parameters_.stiffness, mass, damping_ratio_for_restitution(restitution ? m.restitution : 0.0))),
+                               mass, ctx.dt);
     pt.friction_stiffness = friction ? parameters_.friction_stiffness : 0.0;
     pt.static_mu = m.static_mu();
     pt.dynamic_mu = m.friction;

@@ -25,15 +25,26 @@ struct PassContext {
   SolverBodyArray& sb;
   SolverContact* contacts;
   bool friction;
+  bool accumulated;  // projected Gauss-Seidel (ours), or the lab text's push-only impulses
   ImpulseCounters& counters;
   explicit PassContext(ImpulseStep& step)
-      : sb(step.resting), contacts(step.contacts.data()), friction(step.friction()), counters(step.counters()) {}
+      : sb(step.resting),
+        contacts(step.contacts.data()),
+        friction(step.friction()),
+        accumulated(step.settings().accumulated_impulses),
+        counters(step.counters()) {}
 };
+
+// The impulse of one contact of a pass toward `target` (its u_n at e = 0).
+[[gnu::always_inline]] inline Vec3 level_impulse(const PassContext& p, SolverContact& c, const Vec3& u, double target) {
+  return p.accumulated ? resting_impulse(c, u, target, p.friction, p.counters)
+                       : push_impulse(c, u, target, p.friction, p.counters);
+}
 
 // One resting impulse of a pass; returns the squared velocity change |K dj|^2 it made.
 [[gnu::always_inline]] inline double solve_contact(const PassContext& p, const ShockPropagation::LevelContact& lc) {
   SolverContact& c = p.contacts[lc.index];
-  const Vec3 j = resting_impulse(c, p.sb.relative_velocity(c), lc.target, p.friction, p.counters);
+  const Vec3 j = level_impulse(p, c, p.sb.relative_velocity(c), lc.target);
   p.sb.apply(c, j, lc.a_moves, lc.b_moves);
   return (c.K * j).squaredNorm();
 }
@@ -61,8 +72,8 @@ struct PassContext {
   SolverContact& c2 = p.contacts[second.index];
   const Vec3 u1 = p.sb.relative_velocity(c1);
   const Vec3 u2 = p.sb.relative_velocity(c2);
-  const Vec3 j1 = resting_impulse(c1, u1, first.target, p.friction, p.counters);
-  const Vec3 j2 = resting_impulse(c2, u2, second.target, p.friction, p.counters);
+  const Vec3 j1 = level_impulse(p, c1, u1, first.target);
+  const Vec3 j2 = level_impulse(p, c2, u2, second.target);
   p.sb.apply(c1, j1, first.a_moves, first.b_moves);
   p.sb.apply(c2, j2, second.a_moves, second.b_moves);
   return {(c1.K * j1).squaredNorm(), (c2.K * j2).squaredNorm()};
@@ -290,9 +301,15 @@ double ShockPropagation::solve_sticking_groups(ImpulseStep& step) {
   // Each group of bodies on frozen supports solved directly when every touching point can stick
   // (sticking_solve.hpp); the groups it declines stay active for the passes.
   const int groups = level_groups();
+  const bool direct = step.settings().sticking_solves;
   double worst = -1.0;
   active_.clear();
   for (int g = 0; g < groups; ++g) {
+    if (!direct) {  // every group by passes
+      set_frozen_collision_matrices(step, group(g));
+      active_.push_back(g);
+      continue;
+    }
     double residual = 0.0;
     const StickingOutcome outcome =
         solve_sticking_group(step.resting, step.contacts, group(g), step.friction(), step.counters(), residual);
