@@ -7,6 +7,10 @@
 //                 the lab text prescribes costs before anything of ours is added.
 //   step_hard     the hard catalogue's square pyramids of base 6 and 10 and the Jenga tower
 //                 (generated_scenes.hpp), through the catalogue's durations (3 s, 1.5 s, 5 s).
+//   step_moving   scenes in motion: the bone scene (fixtures/scenes, its whole 5 s), a 4 x 4 x 4
+//                 cube of boxes rammed by a 40 kg box (2 s), and heaps of 300 and 1,000 randomly
+//                 sized and turned boxes falling in layers onto the ground (3 s), built in code
+//                 (generated_scenes.hpp); pile_100 is in step_scene.
 //   step_scaling  square pyramids of base 4, 6, 8, 10, 14 and 20 (30 to 2,870 boxes), the first
 //                 60 steps (0.25 s): cost against the number of contacts, for the log-log plot
 //                 of docs/performance.md (scripts/plot-scaling).
@@ -103,6 +107,10 @@ constexpr double kJengaDuration = 5.0;      // s
 constexpr std::array<int, 6> kScalingBases = {4, 6, 8, 10, 14, 20};
 constexpr long kScalingSteps = 60;
 
+// The scenes in motion: long enough for the cube to be scattered and the heaps to land.
+constexpr double kRammedCubeDuration = 2.0;  // s
+constexpr double kHeapDuration = 3.0;        // s: the top layers land after some 1.5 s
+
 void step_generated(benchmark::State& state, const Scene& scene, const std::string& engine, long steps) {
   time_steps(state, scene, engine, nlohmann::json::object(), steps);
 }
@@ -133,6 +141,18 @@ const bool registered = [] {
     for (const std::string& engine : kEngines)
       benchmark::RegisterBenchmark(("step_hard/" + name + "/" + engine).c_str(), step_generated, scene,
                                    engine, whole(scene))
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
+  const std::vector<std::pair<std::string, Scene>> moving = {
+      {"bone_hits_pile", fixture_scene("bone_hits_pile")},
+      {"rammed_cube_64", bench::rammed_cube(kRammedCubeDuration)},
+      {"heap_300", bench::falling_heap(300, 6, kHeapDuration)},
+      {"heap_1000", bench::falling_heap(1000, 10, kHeapDuration)},
+  };
+  for (const auto& [name, scene] : moving)
+    for (const std::string& engine : kEngines)
+      benchmark::RegisterBenchmark(("step_moving/" + name + "/" + engine).c_str(), step_generated, scene, engine,
+                                   whole(scene))
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
   for (int base : kScalingBases) {
