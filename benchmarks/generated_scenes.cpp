@@ -1,6 +1,8 @@
 #include "generated_scenes.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <random>
 #include <string>
 
 namespace boxpile::bench {
@@ -40,6 +42,21 @@ std::string indexed_name(char prefix, Ints... indices) {
 
 constexpr double kPyramidGap = 0.05;  // m between neighbours in a row: no side contacts at rest
 
+// A uniform number in [lo, hi) from the generator's 32 bits: std::uniform_real_distribution's
+// values are left to the library, and the benchmark's scenes must be the same everywhere.
+double uniform(std::mt19937& rng, double lo, double hi) {
+  return lo + (hi - lo) * (static_cast<double>(rng()) / 4294967296.0);
+}
+
+// A random rotation: a point drawn uniformly in the unit 4-ball (by rejection), normalised.
+Quat random_rotation(std::mt19937& rng) {
+  for (;;) {
+    const Eigen::Vector4d q(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+    const double n = q.norm();
+    if (n > 0.1 && n <= 1.0) return Quat(q.x() / n, q.y() / n, q.z() / n, q.w() / n);
+  }
+}
+
 }  // namespace
 
 Scene square_pyramid(int base, double duration) {
@@ -71,6 +88,43 @@ Scene jenga_tower(double duration) {
       else
         s.bodies.push_back(block(name, half, Vec3(offset, 0.0, z), across));
     }
+  }
+  return s;
+}
+
+Scene rammed_cube(double duration) {
+  Scene s = resting_scene("rammed_cube", "A 4 x 4 x 4 cube of 0.2 m boxes rammed by a 40 kg box at 6 m/s.", duration);
+  constexpr int kSide = 4;
+  constexpr double kHalf = 0.1;            // m
+  constexpr double kPitch = 2 * kHalf + 1e-3;  // m: side by side 1 mm apart, stacked touching
+  for (int i = 0; i < kSide; ++i)
+    for (int j = 0; j < kSide; ++j)
+      for (int k = 0; k < kSide; ++k)
+        s.bodies.push_back(block(indexed_name('c', i, j, k), Vec3::Constant(kHalf),
+                                 Vec3(i * kPitch + kHalf, (j - 0.5 * (kSide - 1)) * kPitch, kHalf * (2 * k + 1))));
+  constexpr double kRamHalf = 0.2;  // m
+  BodyDesc ram = block("ram", Vec3::Constant(kRamHalf), Vec3(-0.5, 0.0, kRamHalf + 0.01));
+  ram.mass = 40.0;
+  ram.velocity = Vec3(6.0, 0.0, 0.0);
+  s.bodies.push_back(std::move(ram));
+  return s;
+}
+
+Scene falling_heap(int count, int per_row, double duration) {
+  Scene s = resting_scene("heap_" + std::to_string(count),
+                          std::to_string(count) + " randomly sized and turned boxes falling in layers.", duration);
+  constexpr double kPitch = 1.1;    // m, grid spacing and height between layers
+  constexpr double kDensity = 500;  // kg/m^3
+  std::mt19937 rng(static_cast<std::uint32_t>(count));
+  for (int k = 0; k < count; ++k) {
+    const int layer = k / (per_row * per_row), cell = k % (per_row * per_row);
+    const Vec3 half(uniform(rng, 0.1, 0.3), uniform(rng, 0.1, 0.3), uniform(rng, 0.1, 0.3));
+    const double first = -0.5 * (per_row - 1) * kPitch;
+    BodyDesc b = block(indexed_name('h', k), half,
+                       Vec3(first + (cell % per_row) * kPitch, first + (cell / per_row) * kPitch, 0.6 + layer * kPitch),
+                       random_rotation(rng));
+    b.mass = kDensity * 8.0 * half.prod();
+    s.bodies.push_back(std::move(b));
   }
   return s;
 }

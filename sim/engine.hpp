@@ -53,6 +53,9 @@ class Engine {
   // keeps none.
   virtual const StepStats* solver_stats() const { return nullptr; }
   virtual const WorldCounters* solver_counters() const { return nullptr; }
+  // Switches on the per-stage profile of its steps (solver_counters()->profile); false when it
+  // keeps none.
+  virtual bool enable_profile() { return false; }
   // The contact method of its solver ("impulse" or "penalty" for ours); empty when it has no
   // choice of method.
   virtual std::string_view contact_method() const { return {}; }

@@ -41,7 +41,9 @@ void World::step() {
   const int substeps = method_->substeps();
   const double h = scene_.time.dt / substeps;
   for (int k = 0; k < substeps; ++k) {
+    counters_.profile.begin();
     find_contacts(h);
+    counters_.profile.lap(Stage::contacts);
     StepContext ctx{scene_, bodies_,  ground_,  contacts_, reuse_.same_as_last_step(), wires_, time_ + k * h,
                     h,      counters_, stats_,   events_};
     method_->step(ctx);

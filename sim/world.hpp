@@ -34,6 +34,10 @@ class World final : public Engine {
   const std::vector<CollisionEvent>* collision_events() const override { return &events_; }
   const StepStats* solver_stats() const override { return &stats_; }
   const WorldCounters* solver_counters() const override { return &counters_; }
+  bool enable_profile() override {
+    counters_.profile.enable(true);
+    return true;
+  }
   std::string_view contact_method() const override {
     return scene_.solver.method == ContactSolver::Penalty ? "penalty" : "impulse";
   }

@@ -109,6 +109,10 @@ run(past_bound 2 "past_bound.json: time.dt: dt 0.1 s breaks the penalty method's
 # The same with its own substeps is taken as it is.
 scene_with(past_bound_substeps "{\"method\": \"penalty\", \"stiffness\": 1e9, \"substeps\": 2}" "{}" 0.1)
 run(past_bound_substeps 0 "" run "${WORK}/past_bound_substeps.json" --engine own --duration 0)
+# --profile prints each stage's time per step for ours, and refuses an engine that keeps none.
+run(profile 0 "contact_loop" run "${FIXTURES}/scenes/stack_5.json" --engine own --duration 0.1 --profile)
+run(profile_other_engine 2 "--profile: engine ode keeps no per-stage profile" run "${FIXTURES}/scenes/stack_5.json"
+    --engine ode --duration 0.1 --profile)
 # own-penalty forces the method on an impulse scene, and says so in its frames.
 run(own_penalty 0 "" run "${FIXTURES}/scenes/stack_5.json" --engine own-penalty --duration 0.1 --out "${WORK}/penalty.json")
 file(READ "${WORK}/penalty.json" penalty_run)

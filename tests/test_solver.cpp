@@ -473,3 +473,29 @@ TEST_CASE("a body's share of the collision matrix is (1/m) E - [r]x I^-1 [r]x, s
     CHECK(got == got.transpose());
   }
 }
+
+TEST_CASE("the per-stage profile times every stage the method runs and changes no result", "[solver][profile]") {
+  const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/pile_100.json");
+  World plain(scene), profiled(scene);
+  REQUIRE(profiled.enable_profile());
+  constexpr int kSteps = 60;  // the boxes fall onto the ground and each other: every stage runs
+  for (int k = 0; k < kSteps; ++k) {
+    plain.step();
+    profiled.step();
+  }
+  std::vector<BodyState> a, b;
+  plain.body_states(a);
+  profiled.body_states(b);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    CHECK(a[i].position == b[i].position);  // to the bit: the clock is read, never used
+    CHECK(a[i].velocity == b[i].velocity);
+  }
+  const StepProfile& p = profiled.counters().profile;
+  for (Stage s : {Stage::contacts, Stage::prepare, Stage::collision_loop, Stage::forces, Stage::contact_loop,
+                  Stage::shock_propagation, Stage::recovery, Stage::integration}) {
+    INFO(kStageNames[static_cast<std::size_t>(s)]);
+    CHECK(p.seconds(s) > 0.0);
+  }
+  CHECK(p.seconds(Stage::penalty_forces) == 0.0);  // not this method's stage
+  CHECK(plain.counters().profile.total() == 0.0);  // off by default
+}

@@ -26,6 +26,9 @@ namespace boxpile {
 
 // One contact point as the solver sees it during a step (positions do not change in a step, so
 // r_A, r_B and each body's share of K are computed once).
+// The fields the resting passes read at every impulse come first, one after another, and those
+// read once per step or per phase (each body's share of K, the collision loop's own) last: a
+// contact spans some ten cache lines, and the passes then touch fewer of them.
 struct SolverContact {
   int a = 0;
   int b = 0;  // kGround (-1) for the ground
@@ -35,28 +38,28 @@ struct SolverContact {
   double depth = 0.0;
   double slop = 0.0;         // m, penetration left alone by recovery (relative to the pair's boxes)
   double friction = 0.0;     // mu
-  double restitution = 0.0;  // e
+  // The normal velocity when the current loop began (the collision loop's events and the
+  // contact loop's restitution ramp read it), and, in the resting phase (contact loop and
+  // shock propagation), the impulse accumulated over the phase so far.
+  double start_un = 0.0;
   Mat3 Wa = Mat3::Zero();    // [rA]x^T, so omega_A x rA = Wa omega_A (likewise Wb): solver_body.hpp
   Mat3 Wb = Mat3::Zero();
-  Mat3 Ka = Mat3::Zero();    // 1/mA E - [rA]x IA^-1 [rA]x (zero for a fixed body)
-  Mat3 Kb = Mat3::Zero();
-  // The collision matrix the current phase uses and its inverse: Ka + Kb, or in shock
-  // propagation the share of the bodies that still move. Set once per phase, not per impulse.
-  Mat3 K = Mat3::Zero();
-  Mat3 Kinv = Mat3::Zero();
+  Vec3 accumulated = Vec3::Zero();
+  Vec3 slide_dir = Vec3::Zero();  // unit tangential direction if sliding at the start, else 0
   // K^-1 n and |K^-1| |n| (Kinv is exactly symmetric), set with K: the normal part of a sticking
   // impulse is Kinv_n . (target n - u), and Kinv_n_size . |target n - u| bounds the terms it sums
   // (stays_unloaded).
   Vec3 Kinv_n = Vec3::Zero();
   Vec3 Kinv_n_size = Vec3::Zero();
-  bool active = true;        // the collision loop drops contacts that separate
+  // The collision matrix the current phase uses and its inverse: Ka + Kb, or in shock
+  // propagation the share of the bodies that still move. Set once per phase, not per impulse.
+  Mat3 Kinv = Mat3::Zero();
+  Mat3 K = Mat3::Zero();
+  Mat3 Ka = Mat3::Zero();    // 1/mA E - [rA]x IA^-1 [rA]x (zero for a fixed body)
+  Mat3 Kb = Mat3::Zero();
+  double restitution = 0.0;  // e
   double collision_impulse = 0.0;  // N s, the normal impulse the collision loop gave this step
-  // The normal velocity when the current loop began (the collision loop's events and the
-  // contact loop's restitution ramp read it), and, in the resting phase (contact loop and
-  // shock propagation), the impulse accumulated over the phase so far.
-  double start_un = 0.0;
-  Vec3 accumulated = Vec3::Zero();
-  Vec3 slide_dir = Vec3::Zero();  // unit tangential direction if sliding at the start, else 0
+  bool active = true;        // the collision loop drops contacts that separate
 };
 
 // Body A's share of K at offset r: (1/m) E - [r]x I^-1 [r]x.

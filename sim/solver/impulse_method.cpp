@@ -48,21 +48,26 @@ void ImpulseMethod::step(StepContext& ctx) {
   // 1. The contact set (found by the world), as the solver sees it through the whole step.
   prepare_solver_contacts(ctx);
   if (same_set_) ++ctx.counters.same_contact_sets;
+  StepProfile& profile = ctx.counters.profile;
+  profile.lap(Stage::prepare);
   ImpulseStep step{ctx, SolverBodies{bodies, ctx.ground}, resting_bodies_, solver_contacts_};
   ctx.stats = StepStats{};
 
   // 2. Collision loop: resolve approaching contacts with the scene's restitution.
   collision_loop(step);
   ++ctx.counters.collision_loop_runs;
+  profile.lap(Stage::collision_loop);
 
   // 3. External forces on the momenta: gravity, air damping; the wires take their share.
   integrate_momenta(ctx);
   enforce_wires(bodies, ctx.wires);
+  profile.lap(Stage::forces);
 
   // 4. Contact loop: every contact of the set, restitution ramped up to 0.
   contact_loop(step);
   ++ctx.counters.contact_loop_runs;
   enforce_wires(bodies, ctx.wires);
+  profile.lap(Stage::contact_loop);
 
   // 5. Shock propagation: from the ground up, each level frozen once solved.
   if (s.shock_propagation) {
@@ -70,16 +75,19 @@ void ImpulseMethod::step(StepContext& ctx) {
     ++ctx.counters.shock_propagation_runs;
   }
   enforce_wires(bodies, ctx.wires);
+  profile.lap(Stage::shock_propagation);
 
   // Penetration recovery: pseudo-velocities that push overlaps apart (positions only).
   if (s.penetration_recovery > 0.0) {
     recovery_.run(step, s.shock_propagation ? &shock_ : nullptr);
     ++ctx.counters.recovery_runs;
   }
+  profile.lap(Stage::recovery);
 
   // 6. Positions and orientations; wired anchors back onto their wires.
   integrate_positions(ctx);
   project_wires(bodies, ctx.wires);
+  profile.lap(Stage::integration);
 }
 
 void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {

@@ -37,12 +37,16 @@ void PenaltyMethod::step(StepContext& ctx) {
   // 1-2. The contact set (found by the world for this step): at each touching point a normal
   //      spring-damper and a friction spring to its anchor, summed into the bodies' momenta.
   apply_contact_forces(ctx);
+  StepProfile& profile = ctx.counters.profile;
+  profile.lap(Stage::penalty_forces);
   // 3. External forces on the momenta: gravity, air damping; the wires take their share.
   integrate_momenta(ctx);
   enforce_wires(ctx.bodies, ctx.wires);
+  profile.lap(Stage::forces);
   // 4. Positions with the new velocities (symplectic Euler); wired anchors back onto their wires.
   integrate_positions(ctx);
   project_wires(ctx.bodies, ctx.wires);
+  profile.lap(Stage::integration);
   ++ctx.counters.penalty_substeps;
 }
 

@@ -11,6 +11,7 @@
 #include "boxpile/sim/body.hpp"
 #include "boxpile/sim/collision/collide.hpp"
 #include "boxpile/sim/scene.hpp"
+#include "boxpile/sim/step_profile.hpp"
 #include "boxpile/sim/solver/impulse.hpp"
 #include "boxpile/sim/solver/wire.hpp"
 
@@ -44,6 +45,7 @@ struct WorldCounters {
   std::uint64_t gyroscopic_updates = 0;    // per body and step
   ImpulseCounters impulses;
   PenaltyCounters penalty;
+  StepProfile profile;  // seconds per stage, when switched on (World::enable_profile)
 };
 
 // What the impulse solver did in one step, for the convergence plots and the effect tests.

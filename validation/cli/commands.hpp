@@ -74,6 +74,7 @@ struct RunOptions {
   std::optional<std::string> out;  // absent: print a summary instead
   std::optional<int> iterations;   // --set iterations=N: ODE QuickStep's or Bullet's passes
   std::vector<std::string> set;    // "[ENGINE.]KEY=VALUE": any setting of the engine (boxpile settings)
+  bool profile = false;            // print where the steps' time went, stage by stage (ours)
   RunLimits limits;
 };
 void add_run_command(CLI::App& app, RunOptions& options);

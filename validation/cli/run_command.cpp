@@ -88,6 +88,30 @@ void print_summary(const Scene& scene, std::string_view engine, long steps, doub
             << format_number(fastest->velocity.norm(), "%.3g") << " m/s\n";
 }
 
+// The per-stage profile of the run's steps: microseconds per step and share of the profiled time,
+// the stages in the order they run (those that took no time left out).
+nlohmann::json profile_json(const StepProfile& profile, long steps) {
+  nlohmann::json stages = nlohmann::json::object();
+  for (std::size_t k = 0; k < kStageCount; ++k) {
+    const double seconds = profile.seconds(static_cast<Stage>(k));
+    if (seconds > 0.0) stages[std::string(kStageNames[k])] = seconds / static_cast<double>(std::max(1L, steps));
+  }
+  return {{"seconds_per_step", stages}, {"total_seconds_per_step", profile.total() / static_cast<double>(std::max(1L, steps))}};
+}
+
+void print_profile(const StepProfile& profile, long steps) {
+  const double total = profile.total();
+  std::cout << "profile (wall clock, per step):\n";
+  for (std::size_t k = 0; k < kStageCount; ++k) {
+    const double seconds = profile.seconds(static_cast<Stage>(k));
+    if (seconds <= 0.0) continue;
+    std::printf("  %-18s %10.2f us  %5.1f%%\n", std::string(kStageNames[k]).c_str(),
+                1e6 * seconds / static_cast<double>(std::max(1L, steps)), total > 0.0 ? 100.0 * seconds / total : 0.0);
+  }
+  std::printf("  %-18s %10.2f us\n", "total", 1e6 * total / static_cast<double>(std::max(1L, steps)));
+  std::fflush(stdout);
+}
+
 }  // namespace
 
 void add_run_command(CLI::App& app, RunOptions& options) {
@@ -104,6 +128,9 @@ void add_run_command(CLI::App& app, RunOptions& options) {
   cmd->add_option("--iterations", options.iterations,
                   "The same as --set iterations=N: ODE QuickStep's passes (default 20) or Bullet's (default 10)");
   add_set_option(*cmd, options.set);
+  cmd->add_flag("--profile", options.profile,
+                "Time each stage of our steps (contacts, each solver stage, integration) and print the time per step "
+                "of each (and record it with --out); our engine only");
   add_limit_options(*cmd, options.limits, true);
 }
 
@@ -139,6 +166,9 @@ int run_run(const RunOptions& options) {
   const long steps = step_count(scene.time);
   const Activity building("building the " + options.engine + " engine for " + options.scene);
   const std::unique_ptr<Engine> engine = make_engine(options.engine, scene, settings);
+  if (options.profile && !engine->enable_profile()) {
+    throw UsageError("--profile: engine " + options.engine + " keeps no per-stage profile (only ours does)");
+  }
   const Activity running("running " + options.engine + " on " + options.scene);
   const bool record = out.has_value();
 
@@ -197,6 +227,7 @@ int run_run(const RunOptions& options) {
     doc["wall_seconds"] = loop.wall_seconds;
     doc["final"] = {{"t", loop.final_t}, {"bodies", bodies_json(states)}};
     doc["events"] = std::move(events);
+    if (options.profile) doc["profile"] = profile_json(engine->solver_counters()->profile, loop.steps);
     write_json_file(doc, *out);
   } else {
     std::vector<BodyContact> contacts;
@@ -209,6 +240,7 @@ int run_run(const RunOptions& options) {
               << " J), deepest penetration " << format_number(m.penetration.depth, "%.3g") << " m, levitation "
               << format_number(m.levitation, "%.3g") << " m\n";
   }
+  if (options.profile && !loop.stopped) print_profile(engine->solver_counters()->profile, loop.steps);
   return loop.stopped ? kExitFailure : kExitOk;
 }
 
