@@ -14,12 +14,12 @@
 #include "boxpile/validation/judge/contact_kind.hpp"
 #include "boxpile/validation/judge/systematic.hpp"
 #include "boxpile/validation/known_biases.hpp"
+#include "boxpile/tests/support/own_collider.hpp"
 
 using namespace boxpile;
+using boxpile::test::kOwn;
 
 namespace {
-
-const Collider kOwn = detector_collider("own");
 
 CheckOptions samples(int n) {
   CheckOptions o;
@@ -136,7 +136,8 @@ TEST_CASE("a constant depth offset and points off the midway plane are named by 
                                               for (Contact& c : m) c.depth += 1e-3;
                                             }),
                                             samples(700));
-  const SystematicError* e = pattern(find_systematic(deeper), "depth_offset");
+  const std::vector<SystematicError> deeper_found = find_systematic(deeper);
+  const SystematicError* e = pattern(deeper_found, "depth_offset");
   REQUIRE(e);
   CHECK(std::abs(e->value - 1e-3) < 1e-9);
   CHECK(e->count >= 0.99 * e->of);
@@ -147,7 +148,8 @@ TEST_CASE("a constant depth offset and points off the midway plane are named by 
                                          }),
                                          samples(700));
   REQUIRE(off.count(FailureKind::Outside) > 200);
-  const SystematicError* p = pattern(find_systematic(off), "position_fraction");
+  const std::vector<SystematicError> off_found = find_systematic(off);
+  const SystematicError* p = pattern(off_found, "position_fraction");
   REQUIRE(p);
   CHECK(std::abs(p->value - 1.5) < 1e-6);
   CHECK(p->text.find("toward A") != std::string::npos);

@@ -12,8 +12,10 @@
 #include "boxpile/validation/detectors.hpp"
 #include "boxpile/validation/judge/check_collider.hpp"
 #include "boxpile/validation/judge/judge.hpp"
+#include "boxpile/tests/support/own_collider.hpp"
 
 using namespace boxpile;
+using boxpile::test::kOwn;
 
 namespace {
 
@@ -33,8 +35,6 @@ Manifold square(const Vec3& normal, double depth, double height = 0.45) {
 bool has(const std::vector<Finding>& f, FailureKind k) {
   return std::any_of(f.begin(), f.end(), [k](const Finding& x) { return x.kind == k; });
 }
-
-const Collider kOwn = detector_collider("own");
 
 CheckOptions samples_only(int n) {
   CheckOptions o;

@@ -1,0 +1,11 @@
+// Our detector as a collider (validation/detectors.hpp), for the judge's tests: built once per
+// program, shared by the files that judge it.
+#pragma once
+
+#include "boxpile/validation/detectors.hpp"
+
+namespace boxpile::test {
+
+inline const Collider kOwn = detector_collider("own");
+
+}  // namespace boxpile::test
