@@ -14,6 +14,13 @@ json optional_json(const auto& v) { return v ? json(*v) : json(); }
 
 constexpr std::string_view kImpulse = "impulse", kPenalty = "penalty";
 
+// A boolean setting that is one member of one part of the scene (solver or collision).
+template <auto Part, auto Member>
+Setting<Scene> flag(SettingInfo info) {
+  return {std::move(info), [](Scene& s, const json& v) { (s.*Part).*Member = v.get<bool>(); },
+          [](const Scene& s) { return json((s.*Part).*Member); }};
+}
+
 }  // namespace
 
 std::string_view method_name(ContactSolver method) { return method == ContactSolver::Penalty ? kPenalty : kImpulse; }
@@ -41,32 +48,24 @@ const SettingsTable<Scene>& own_settings_table() {
                              v.get<std::string>() == "lab" ? ImpulseVariant::Lab : ImpulseVariant::Boxpile);
        },
        [](const S& s) { return json(s.solver.variant == ImpulseVariant::Lab ? "lab" : "boxpile"); }},
-      {{.key = "pair_impulses", .kind = Kind::Boolean,
+      flag<&Scene::solver, &SolverSettings::pair_impulses>({.key = "pair_impulses", .kind = Kind::Boolean,
         .what = "collision loop: the approaching points of a pair get their normal impulses from one system "
                 "(a flat landing stays flat); off: push-only Newton-Coulomb impulses point by point (the lab text)",
-        .scene_key = "solver.pair_impulses", .group = impulse},
-       [](S& s, const json& v) { s.solver.pair_impulses = v.get<bool>(); },
-       [](const S& s) { return json(s.solver.pair_impulses); }},
-      {{.key = "accumulated_impulses", .kind = Kind::Boolean,
+        .scene_key = "solver.pair_impulses", .group = impulse}),
+      flag<&Scene::solver, &SolverSettings::accumulated_impulses>({.key = "accumulated_impulses", .kind = Kind::Boolean,
         .what = "contact loop and shock propagation: each contact's impulse accumulated over the phase and "
                 "projected on the friction cone (may take back what it gave); off: push-only impulses with "
                 "the ramped restitution on the present u_n (the lab text)",
-        .scene_key = "solver.accumulated_impulses", .group = impulse},
-       [](S& s, const json& v) { s.solver.accumulated_impulses = v.get<bool>(); },
-       [](const S& s) { return json(s.solver.accumulated_impulses); }},
-      {{.key = "speculative_contacts", .kind = Kind::Boolean,
+        .scene_key = "solver.accumulated_impulses", .group = impulse}),
+      flag<&Scene::solver, &SolverSettings::speculative_contacts>({.key = "speculative_contacts", .kind = Kind::Boolean,
         .what = "points up to contact_margin (or collision_margin) plus a step's motion apart are contacts that "
                 "may close their gap in the step; off: touching or overlapping points only, both margins "
                 "unused (the lab text)",
-        .scene_key = "solver.speculative_contacts", .group = impulse},
-       [](S& s, const json& v) { s.solver.speculative_contacts = v.get<bool>(); },
-       [](const S& s) { return json(s.solver.speculative_contacts); }},
-      {{.key = "sticking_solves", .kind = Kind::Boolean,
+        .scene_key = "solver.speculative_contacts", .group = impulse}),
+      flag<&Scene::solver, &SolverSettings::sticking_solves>({.key = "sticking_solves", .kind = Kind::Boolean,
         .what = "shock propagation: a group of a level whose touching points can all stick is solved "
                 "directly (least squares); off: every group by passes",
-        .scene_key = "solver.sticking_solves", .group = impulse},
-       [](S& s, const json& v) { s.solver.sticking_solves = v.get<bool>(); },
-       [](const S& s) { return json(s.solver.sticking_solves); }},
+        .scene_key = "solver.sticking_solves", .group = impulse}),
       {{.key = "collision_passes", .kind = Kind::Integer, .what = "passes of the collision loop", .min = 1,
         .max = kMaxSolverPasses, .scene_key = "solver.collision_passes", .group = impulse},
        [](S& s, const json& v) { s.solver.collision_passes = v.get<int>(); },
@@ -75,10 +74,8 @@ const SettingsTable<Scene>& own_settings_table() {
         .min = 1, .max = kMaxSolverPasses, .scene_key = "solver.contact_passes", .group = impulse},
        [](S& s, const json& v) { s.solver.contact_passes = v.get<int>(); },
        [](const S& s) { return json(s.solver.contact_passes); }},
-      {{.key = "shock_propagation", .kind = Kind::Boolean, .what = "shock propagation after the contact loop",
-        .scene_key = "solver.shock_propagation", .group = impulse},
-       [](S& s, const json& v) { s.solver.shock_propagation = v.get<bool>(); },
-       [](const S& s) { return json(s.solver.shock_propagation); }},
+      flag<&Scene::solver, &SolverSettings::shock_propagation>({.key = "shock_propagation", .kind = Kind::Boolean, .what = "shock propagation after the contact loop",
+        .scene_key = "solver.shock_propagation", .group = impulse}),
       {{.key = "shock_passes", .kind = Kind::Integer, .what = "most passes over one level in shock propagation",
         .min = 1, .max = kMaxSolverPasses, .scene_key = "solver.shock_passes", .group = impulse},
        [](S& s, const json& v) { s.solver.shock_passes = v.get<int>(); },
@@ -132,21 +129,17 @@ const SettingsTable<Scene>& own_settings_table() {
        [](S& s, const json& v) { s.solver.penalty.substeps = v.get<int>(); },
        [](const S& s) { return optional_json(s.solver.penalty.substeps); }},
       // Contact generation, shared by both methods (the scene's `collision` object).
-      {{.key = "reduce_to_four", .kind = Kind::Boolean, .what = "reduce each box-box manifold to at most 4 points",
-        .scene_key = "collision.reduce_to_four"},
-       [](S& s, const json& v) { s.collision.reduce_to_four = v.get<bool>(); },
-       [](const S& s) { return json(s.collision.reduce_to_four); }},
+      flag<&Scene::collision, &CollisionSettings::reduce_to_four>({.key = "reduce_to_four", .kind = Kind::Boolean, .what = "reduce each box-box manifold to at most 4 points",
+        .scene_key = "collision.reduce_to_four"}),
       {{.key = "collision_margin", .kind = Kind::Number, .unit = "m",
         .what = "points up to this far apart count as contacts (speculative contacts)", .min = 0,
         .max = limits::kMaxMargin, .scene_key = "collision.margin"},
        [](S& s, const json& v) { s.collision.margin = v.get<double>(); },
        [](const S& s) { return json(s.collision.margin); }},
       // The impulse method's alone: the penalty method tests every pair at every step.
-      {{.key = "reuse_contacts", .kind = Kind::Boolean,
+      flag<&Scene::collision, &CollisionSettings::reuse_contacts>({.key = "reuse_contacts", .kind = Kind::Boolean,
         .what = "copy a pair's contacts from the last step while neither body moves beyond rounding (1e-12)",
-        .scene_key = "collision.reuse_contacts", .group = impulse},
-       [](S& s, const json& v) { s.collision.reuse_contacts = v.get<bool>(); },
-       [](const S& s) { return json(s.collision.reuse_contacts); }},
+        .scene_key = "collision.reuse_contacts", .group = impulse}),
   };
   return table;
 }
