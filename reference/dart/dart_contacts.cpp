@@ -9,6 +9,7 @@
 #include <dart/collision/CollisionResult.hpp>
 #include <dart/collision/dart/DARTCollisionDetector.hpp>
 #include <dart/collision/fcl/FCLCollisionDetector.hpp>
+#include <dart/common/Memory.hpp>
 #include <dart/collision/ode/OdeCollisionDetector.hpp>
 #include <dart/dynamics/BoxShape.hpp>
 #include <dart/dynamics/PlaneShape.hpp>
@@ -73,8 +74,14 @@ dart::collision::CollisionDetector& detector_of(DartDetector d) {
   return *slot;
 }
 
+// A frame holds fixed-size Eigen members that need 16-byte alignment, which std::make_shared's
+// control block does not give (UBSan: a misaligned member call): DART's aligned allocation.
+std::shared_ptr<dart::dynamics::SimpleFrame> world_frame() {
+  return dart::common::make_aligned_shared<dart::dynamics::SimpleFrame>(dart::dynamics::Frame::World());
+}
+
 std::shared_ptr<dart::dynamics::SimpleFrame> box_frame(const OrientedBox& box) {
-  auto frame = std::make_shared<dart::dynamics::SimpleFrame>(dart::dynamics::Frame::World());
+  auto frame = world_frame();
   frame->setShape(std::make_shared<dart::dynamics::BoxShape>(2.0 * box.half));
   frame->setRelativeTransform(dart_transform(box));
   return frame;
@@ -128,7 +135,7 @@ Manifold dart_box_plane(DartDetector detector, const OrientedBox& a, const HalfS
   const auto fa = box_frame(a);
   std::vector<Contact> all;
   if (dart_detector_takes_planes(detector)) {
-    auto fp = std::make_shared<dart::dynamics::SimpleFrame>(dart::dynamics::Frame::World());
+    auto fp = world_frame();
     fp->setShape(std::make_shared<dart::dynamics::PlaneShape>(plane.normal, plane.offset));
     for (const RawContact& r : collide(detector, *fa, *fp)) all.push_back(dart_box_plane_contact(r.point, r.normal, r.depth));
   } else {
