@@ -1,5 +1,6 @@
-// Time per step of our engine and the reference engines (ODE QuickStep, Bullet, MuJoCo), each at its
-// defaults, on the shared scenes and on generated ones:
+// Time per step of our engine and the reference engines (ODE QuickStep, Bullet, MuJoCo, DART), each
+// at its defaults (DART also with FCL's meshes, DART's own default detector), on the shared scenes
+// and on generated ones:
 //   step_scene    stack_5, stack_10 and pile_100 from fixtures/scenes, through their whole
 //                 duration (5 s at dt 1/240, 1,200 steps): the falling and the resting phase;
 //                 pile_100/own_lab_loops is ours with the lab text's two loops alone (our
@@ -73,6 +74,7 @@ void step_scene(benchmark::State& state, const std::string& scene_name, const st
 }
 
 nlohmann::json ode_world_step() { return {{"stepper", "world"}}; }
+nlohmann::json dart_fcl_meshes() { return {{"detector", "fcl"}}; }
 
 BENCHMARK_CAPTURE(step_scene, stack_5/ode_quickstep, "stack_5", "ode", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
@@ -81,6 +83,10 @@ BENCHMARK_CAPTURE(step_scene, stack_5/ode_worldstep, "stack_5", "ode", ode_world
 BENCHMARK_CAPTURE(step_scene, stack_5/bullet, "stack_5", "bullet", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_5/mujoco, "stack_5", "mujoco", nlohmann::json::object())
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, stack_5/dart, "stack_5", "dart", nlohmann::json::object())
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, stack_5/dart_fcl, "stack_5", "dart", dart_fcl_meshes())
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_5/own, "stack_5", "own", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
@@ -92,6 +98,8 @@ BENCHMARK_CAPTURE(step_scene, stack_10/bullet, "stack_10", "bullet", nlohmann::j
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, stack_10/mujoco, "stack_10", "mujoco", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(step_scene, stack_10/dart, "stack_10", "dart", nlohmann::json::object())
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(step_scene, pile_100/own, "pile_100", "own", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
@@ -102,6 +110,9 @@ BENCHMARK_CAPTURE(step_scene, pile_100/bullet, "pile_100", "bullet", nlohmann::j
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
 BENCHMARK_CAPTURE(step_scene, pile_100/mujoco, "pile_100", "mujoco", nlohmann::json::object())
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
+BENCHMARK_CAPTURE(step_scene, pile_100/dart, "pile_100", "dart", nlohmann::json::object())
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
 

@@ -9,6 +9,6 @@ set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "libeigen3-dev, nlohmann-json3-dev, libode-dev, libbullet-dev, libmujoco-dev, pkg-config")
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "libeigen3-dev, nlohmann-json3-dev, libode-dev, libbullet-dev, libmujoco-dev, libdart-dev, libdart-collision-ode-dev, pkg-config")
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 include(CPack)

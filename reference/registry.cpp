@@ -4,6 +4,8 @@
 
 #include "boxpile/reference/bullet/bullet_contacts.hpp"
 #include "boxpile/reference/bullet/bullet_engine.hpp"
+#include "boxpile/reference/dart/dart_contacts.hpp"
+#include "boxpile/reference/dart/dart_engine.hpp"
 #include "boxpile/reference/mujoco/mujoco_contacts.hpp"
 #include "boxpile/reference/mujoco/mujoco_engine.hpp"
 #include "boxpile/reference/ode/ode_contacts.hpp"
@@ -152,6 +154,25 @@ std::vector<EngineRow> built_in_rows() {
       {{"mujoco", "MuJoCo 2.2.2's collision table (mjc_BoxBox, mjc_PlaneBox)", false,
         [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return mujoco_box_box(a, b); },
         [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return mujoco_box_plane(a, p); }}}));
+  // DART is in no default list, as MuJoCo: its Dantzig LCP costs about 10 times ODE's QuickStep
+  // a step (docs/reference-engines.md); `--engines ...,dart` adds it.
+  rows.push_back(typed_row<DartEngine>(
+      "dart", "DART 6.12.1, double precision, Dantzig LCP (Debian libdart-dev, libdart-collision-ode-dev)",
+      &dart_settings_table, {},
+      {{"dart", "DART's DARTCollisionDetector (box-box; the ground as a large box)", false,
+        [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) {
+          return dart_box_box(DartDetector::Dart, a, b);
+        },
+        [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) {
+          return dart_box_plane(DartDetector::Dart, a, p);
+        }},
+       {"fcl", "FCL 0.7's box primitives through DART's FCLCollisionDetector (the ground as a large box)", false,
+        [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) {
+          return dart_box_box(DartDetector::FclPrimitive, a, b);
+        },
+        [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) {
+          return dart_box_plane(DartDetector::FclPrimitive, a, p);
+        }}}));
   return rows;
 }
 

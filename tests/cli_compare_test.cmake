@@ -86,7 +86,7 @@ if(NOT n EQUAL 1)
 endif()
 
 # --- bad input: exit 2, a message, nothing written ---
-expect_refused("unknown engine \"physx\"; available: own, own-impulse, own-penalty, ode, bullet, mujoco" "${WORK}/bad_engine"
+expect_refused("unknown engine \"physx\"; available: own, own-impulse, own-penalty, ode, bullet, mujoco, dart" "${WORK}/bad_engine"
                compare "${stack}" --engines own,physx --report "${WORK}/bad_engine")
 expect_refused("missing.json" "${WORK}/bad_scene" compare "${WORK}/missing.json" --report "${WORK}/bad_scene")
 expect_refused("overlap.json" "${WORK}/bad_overlap" compare "${FIXTURES}/bad/overlap.json" --report "${WORK}/bad_overlap")

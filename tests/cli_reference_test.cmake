@@ -12,13 +12,15 @@ expect_length("${out}" 8 engines own contacts)
 expect_length("${out}" 8 engines ode contacts)
 expect_length("${out}" 4 engines bullet contacts)  # Bullet caps box-box at 4
 expect_length("${out}" 8 engines mujoco contacts)
+expect_length("${out}" 4 engines dart contacts)  # so do DART's and FCL's
+expect_length("${out}" 4 engines fcl contacts)
 expect_json("${out}" 4 diff bullet points bullet)
 expect_match("${out}" "^0(\\.0)?$" diff ode normal_angle)
 expect_json("${out}" ON diff bullet smaller_inside_hull)
 expect_json("${out}" box-box kind)
 
 run_boxpile(0 contacts "${FIXTURES}/contacts/plane_flat.json")
-expect_length("${out}" 5 engines)  # own, ode, bullet, bullet_multipoint and mujoco
+expect_length("${out}" 7 engines)  # own, ode, bullet, bullet_multipoint, mujoco, dart and fcl
 expect_length("${out}" 4 engines mujoco contacts)
 expect_length("${out}" 1 engines bullet contacts)
 expect_json("${out}" box-plane kind)
@@ -100,7 +102,7 @@ if(energy LESS 122.62 OR energy GREATER 122.63)
   message(SEND_ERROR "ode run: total energy ${energy} J at the start, expected 122.625 J")
 endif()
 run_boxpile(2 run "${FIXTURES}/scenes/stack_5.json" --engine physx)
-expect_contains("${err}" "unknown engine \"physx\"; available: own, own-impulse, own-penalty, ode, bullet, mujoco")
+expect_contains("${err}" "unknown engine \"physx\"; available: own, own-impulse, own-penalty, ode, bullet, mujoco, dart")
 run_boxpile(2 run "${FIXTURES}/bad/overlap.json" --engine ode)
 expect_contains("${err}" "overlap.json")
 run_boxpile(2 run "${WORK}/missing.json" --engine ode)

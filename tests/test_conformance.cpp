@@ -211,6 +211,11 @@ const std::vector<Reference> kBoxBoxReferences = {
       {Mismatch::Depth, 0.37},
       {Mismatch::Region, 0.21},
       {Mismatch::Count, 6e-3}}},
+    // DART's box-box (DARTCollisionDetector) is a port of ODE's dBoxBox, and so is FCL 0.7's box
+    // primitive test: ODE's rates (invalid 4, kind 59, normal 83 of 20,000, seed 11), with at most
+    // 4 points (they cull to 4 where ODE keeps 8). Gated as ODE.
+    {"dart", 4, false, {{Mismatch::Invalid, 6e-4}, {Mismatch::Kind, 7e-3}, {Mismatch::Normal, 9e-3}}},
+    {"fcl", 4, false, {{Mismatch::Invalid, 6e-4}, {Mismatch::Kind, 7e-3}, {Mismatch::Normal, 9e-3}}},
 };
 
 // Our near-face edge-edge sets (is_near_face) as a fraction of the samples, measured over 20,000
@@ -486,6 +491,12 @@ const std::vector<PlaneReference> kPlaneReferences = {
     {"bullet", 1, true, true},
     {"bullet_multipoint", 4, true, true, 0.75, 8e-4},
     {"mujoco", 4, false, true},
+    // dart, fcl: dBoxBox against the ground box (a box of 1e3 m under the plane), at most 4 points
+    // culled by spread rather than depth: fewer than min(ours, 4) in 9.5% of the samples (1,899 of
+    // 20,000, seed 12), other than our deepest in 5.0% (1,003); both detectors alike. Gated at
+    // about twice.
+    {"dart", 4, false, true, 0.19, 0.10},
+    {"fcl", 4, false, true, 0.19, 0.10},
 };
 
 // What is wrong with a reference's set against ours, by name (see PlaneReference); empty when
@@ -603,37 +614,38 @@ struct FixtureExpectation {
 };
 
 // MuJoCo (mjc_BoxBox): 5 points for two aligned faces where we clip 4, depths often half ours
-// (kDiffer), and a box-plane set that is always our deepest 4 vertices.
+// (kDiffer), and a box-plane set that is always our deepest 4 vertices. DART's and FCL's (ports of
+// dBoxBox, the ground a box): ODE's sets, capped at 4 points (yaw45_octagon: 4 of our 8).
 const std::vector<FixtureExpectation> kFixtures = {
     // The foundation special cases.
-    {"aligned_offset", {{"own", 4}, {"ode", 4}, {"bullet", 4}, {"mujoco", 5, kDiffer}}, {}},
-    {"yaw45_octagon", {{"own", 8}, {"ode", 8}, {"bullet", 4}, {"mujoco", 8, kDiffer}}, {}},  // Bullet's cap: 4 of our 8
-    {"crossing_edges", {{"own", 1}, {"ode", 1}, {"bullet", 1, kDiffer}, {"mujoco", 1}}, {}},  // Bullet's fudge2: 2e-5 m deeper
-    {"edge_on_face", {{"own", 2}, {"ode", 2}, {"bullet", 2}, {"mujoco", 3, kDiffer}}, {}},
-    {"vertex_on_face", {{"own", 1}, {"ode", 1}, {"bullet", 1}, {"mujoco", 1, kDiffer}}, {}},
-    {"separated", {{"own", 0}, {"ode", 0}, {"bullet", 0}, {"mujoco", 0}}, {}},
-    {"touching", {{"own", 4}, {"ode", 4}, {"bullet", 4}, {"mujoco", 5, kDiffer}}, {}},
-    {"deep_overlap", {{"own", 4}, {"ode", 4}, {"bullet", 4}, {"mujoco", 5, kDiffer}}, {}},
-    {"parallel_edges", {{"own", 4}, {"ode", 4}, {"bullet", 2}, {"mujoco", 5, kDiffer}}, {}},  // Bullet merges points 7 mm apart
-    {"small_on_large", {{"own", 4}, {"ode", 4}, {"bullet", 4}, {"mujoco", 5, kDiffer}}, {}},
-    {"plane_flat", {{"own", 4}, {"ode", 4}, {"bullet", 1}, {"bullet_multipoint", 3}, {"mujoco", 4}}, {}},
-    {"plane_edge", {{"own", 2}, {"ode", 2}, {"bullet", 1}, {"bullet_multipoint", 2}, {"mujoco", 2}}, {}},
-    {"plane_vertex", {{"own", 1}, {"ode", 1}, {"bullet", 1}, {"bullet_multipoint", 1}, {"mujoco", 1}}, {}},
-    {"plane_tilted", {{"own", 4}, {"ode", 4}, {"bullet", 1}, {"bullet_multipoint", 3}, {"mujoco", 4}}, {}},
+    {"aligned_offset", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 4}, {"mujoco", 5, kDiffer}}, {}},
+    {"yaw45_octagon", {{"own", 8}, {"ode", 8}, {"dart", 4}, {"fcl", 4}, {"bullet", 4}, {"mujoco", 8, kDiffer}}, {}},  // Bullet's cap: 4 of our 8
+    {"crossing_edges", {{"own", 1}, {"ode", 1}, {"dart", 1}, {"fcl", 1}, {"bullet", 1, kDiffer}, {"mujoco", 1}}, {}},  // Bullet's fudge2: 2e-5 m deeper
+    {"edge_on_face", {{"own", 2}, {"ode", 2}, {"dart", 2}, {"fcl", 2}, {"bullet", 2}, {"mujoco", 3, kDiffer}}, {}},
+    {"vertex_on_face", {{"own", 1}, {"ode", 1}, {"dart", 1}, {"fcl", 1}, {"bullet", 1}, {"mujoco", 1, kDiffer}}, {}},
+    {"separated", {{"own", 0}, {"ode", 0}, {"dart", 0}, {"fcl", 0}, {"bullet", 0}, {"mujoco", 0}}, {}},
+    {"touching", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 4}, {"mujoco", 5, kDiffer}}, {}},
+    {"deep_overlap", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 4}, {"mujoco", 5, kDiffer}}, {}},
+    {"parallel_edges", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 2}, {"mujoco", 5, kDiffer}}, {}},  // Bullet merges points 7 mm apart
+    {"small_on_large", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 4}, {"mujoco", 5, kDiffer}}, {}},
+    {"plane_flat", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 1}, {"bullet_multipoint", 3}, {"mujoco", 4}}, {}},
+    {"plane_edge", {{"own", 2}, {"ode", 2}, {"dart", 2}, {"fcl", 2}, {"bullet", 1}, {"bullet_multipoint", 2}, {"mujoco", 2}}, {}},
+    {"plane_vertex", {{"own", 1}, {"ode", 1}, {"dart", 1}, {"fcl", 1}, {"bullet", 1}, {"bullet_multipoint", 1}, {"mujoco", 1}}, {}},
+    {"plane_tilted", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 1}, {"bullet_multipoint", 3}, {"mujoco", 4}}, {}},
     // Conventions that differ by design.
     {"plane_bullet_speculative",
-     {{"own", 0}, {"ode", 0}, {"bullet", 1, kDiffer}, {"bullet_multipoint", 3, kDiffer}, {"mujoco", 0}}, {}},
-    {"plane_deep_six", {{"own", 6}, {"ode", 4}, {"bullet", 1}, {"bullet_multipoint", 1}, {"mujoco", 4}}, {}},
-    {"plane_ode_missed_vertex", {{"own", 4}, {"ode", 3}, {"bullet", 1}, {"bullet_multipoint", 1}, {"mujoco", 4}}, {}},
-    {"bullet_merged_points", {{"own", 3}, {"ode", 3}, {"bullet", 2}, {"mujoco", 3, kDiffer}}, {}},
+     {{"own", 0}, {"ode", 0}, {"dart", 0}, {"fcl", 0}, {"bullet", 1, kDiffer}, {"bullet_multipoint", 3, kDiffer}, {"mujoco", 0}}, {}},
+    {"plane_deep_six", {{"own", 6}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 1}, {"bullet_multipoint", 1}, {"mujoco", 4}}, {}},
+    {"plane_ode_missed_vertex", {{"own", 4}, {"ode", 3}, {"dart", 3}, {"fcl", 3}, {"bullet", 1}, {"bullet_multipoint", 1}, {"mujoco", 4}}, {}},
+    {"bullet_merged_points", {{"own", 3}, {"ode", 3}, {"dart", 3}, {"fcl", 3}, {"bullet", 2}, {"mujoco", 3, kDiffer}}, {}},
     // Our near-face edge-edge set: the references' one edge point, then two of the face's clipped points.
-    {"near_face_edge", {{"own", 3}, {"ode", 1}, {"bullet", 1, kDiffer}, {"mujoco", 3, kDiffer}}, {}},  // Bullet's fudge2: 4e-6 m deeper
-    {"face_edge_tie", {{"own", 3}, {"ode", 1, kDiffer}, {"bullet", 1, kDiffer}, {"mujoco", 3, kDiffer}}, Verdict::BothAcceptable},
+    {"near_face_edge", {{"own", 3}, {"ode", 1}, {"dart", 1}, {"fcl", 1}, {"bullet", 1, kDiffer}, {"mujoco", 3, kDiffer}}, {}},  // Bullet's fudge2: 4e-6 m deeper
+    {"face_edge_tie", {{"own", 3}, {"ode", 1, kDiffer}, {"dart", 1, kDiffer}, {"fcl", 1, kDiffer}, {"bullet", 1, kDiffer}, {"mujoco", 3, kDiffer}}, Verdict::BothAcceptable},
     // Where a reference is wrong.
-    {"ode_deeper_edge_pair", {{"own", 1}, {"ode", 1, kDiffer}, {"bullet", 1, kDiffer}, {"mujoco", 2, kDiffer}}, Verdict::OwnRight},
+    {"ode_deeper_edge_pair", {{"own", 1}, {"ode", 1, kDiffer}, {"dart", 1, kDiffer}, {"fcl", 1, kDiffer}, {"bullet", 1, kDiffer}, {"mujoco", 2, kDiffer}}, Verdict::OwnRight},
     // Ours: the edge point, then two clipped points of B's face 0.034 rad from its normal (near-face).
-    {"ode_edge_point_outside", {{"own", 3}, {"ode", 1, kDiffer}, {"bullet", 1, kDiffer}, {"mujoco", 3}}, Verdict::OwnRight},
-    {"bullet_phantom_edge", {{"own", 0}, {"ode", 0}, {"bullet", 1, kDiffer}, {"mujoco", 0}}, Verdict::OwnRight},
+    {"ode_edge_point_outside", {{"own", 3}, {"ode", 1, kDiffer}, {"dart", 1, kDiffer}, {"fcl", 1, kDiffer}, {"bullet", 1, kDiffer}, {"mujoco", 3}}, Verdict::OwnRight},
+    {"bullet_phantom_edge", {{"own", 0}, {"ode", 0}, {"dart", 0}, {"fcl", 0}, {"bullet", 1, kDiffer}, {"mujoco", 0}}, Verdict::OwnRight},
 };
 
 Agreement agreement(const Manifold& own, const Manifold& theirs) {
@@ -721,11 +733,13 @@ using test::run;
 using test::states_of;
 using test::unit_box;
 
-constexpr std::array<const char*, 2> kReferenceEngines = {"ode", "bullet"};
+// The linked-in references whose conventions these cases check alike (MuJoCo's differ in places:
+// test_mujoco.cpp; DART's own cases are in test_dart.cpp).
+constexpr std::array<const char*, 3> kReferenceEngines = {"ode", "bullet", "dart"};
 
 }  // namespace
 
-TEST_CASE("the engine factory builds our engine, ODE and Bullet and refuses other names", "[reference]") {
+TEST_CASE("the engine factory builds our engine and the references and refuses other names", "[reference]") {
   const Scene scene = empty_scene(Effects{}, true);
   CHECK(make_engine("own", scene)->name() == "own");
   CHECK(make_engine("own-impulse", scene)->name() == "own-impulse");
@@ -733,13 +747,14 @@ TEST_CASE("the engine factory builds our engine, ODE and Bullet and refuses othe
   CHECK(make_engine("ode", scene)->name() == "ode");
   CHECK(make_engine("bullet", scene)->name() == "bullet");
   CHECK(make_engine("mujoco", scene)->name() == "mujoco");
+  CHECK(make_engine("dart", scene)->name() == "dart");
   CHECK_THROWS_AS(make_engine("odee", scene), UnknownEngine);
   CHECK_THROWS_WITH(make_engine("odee", scene), Catch::Contains("unknown engine \"odee\"") &&
-                                                    Catch::Contains("available: own, own-impulse, own-penalty, ode, bullet, mujoco"));
+                                                    Catch::Contains("available: own, own-impulse, own-penalty, ode, bullet, mujoco, dart"));
 }
 
 TEST_CASE("free fall follows the semi-implicit Euler parabola, only with the gravity effect", "[reference]") {
-  // Both engines update v += g dt, then x += v dt: after n steps z = z0 - g dt^2 n (n + 1) / 2.
+  // Every engine updates v += g dt, then x += v dt: after n steps z = z0 - g dt^2 n (n + 1) / 2.
   for (const char* name : kReferenceEngines) {
     INFO(name);
     Scene scene = empty_scene(Effects{}, false);
@@ -807,11 +822,12 @@ TEST_CASE("materials combine per pair: a box slides down an incline at g (sin - 
   // would give 0.09 and a = 4.14 m/s^2). On 30 degrees, a = 9.81 (0.5 - 0.3 cos 30) = 2.356 m/s^2.
   // ODE keeps 4 points under the sliding box and lands within 0.2%. Bullet's box-plane manifold
   // gains one point per step and drops points that slid 0.017 m, so the box rocks on 1-2 points
-  // and slides 3.2% slower after 1 s: its bound is looser.
+  // and slides 3.2% slower after 1 s: its bound is looser. DART combines by the smaller mu
+  // (test_dart.cpp), so it is not among these.
   const double theta = M_PI / 6;
   const double expected = 9.81 * (std::sin(theta) - 0.3 * std::cos(theta));
   const std::map<std::string, double> tolerance = {{"ode", 0.01}, {"bullet", 0.05}};
-  for (const char* name : kReferenceEngines) {
+  for (const auto& [name, tol] : tolerance) {
     INFO(name);
     Scene scene = empty_scene(Effects{true, true, false, false, false}, true);
     const Vec3 n(-std::sin(theta), 0, std::cos(theta));
@@ -825,11 +841,11 @@ TEST_CASE("materials combine per pair: a box slides down an incline at g (sin - 
     run(*engine, 240);
     const double speed = states_of(*engine)[0].velocity.norm();
     INFO("speed after 1 s " << speed << ", expected " << expected);
-    CHECK(std::abs(speed - expected) < tolerance.at(name) * expected);
+    CHECK(std::abs(speed - expected) < tol * expected);
   }
 }
 
-TEST_CASE("five stacked cubes stand for 5 s in both engines", "[reference]") {
+TEST_CASE("five stacked cubes stand for 5 s in every reference engine", "[reference]") {
   // Measured on this system: top z - 4.5 = -1e-4 (ODE QuickStep) and -1.3e-4 (Bullet) at dt 1/240,
   // with drift below 2e-3 m: these bounds leave room for noise but fail on any collapse.
   const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/stack_5.json");
@@ -927,7 +943,9 @@ TEST_CASE("runs repeat exactly", "[reference]") {
     b.frame.orientation = Quat(Eigen::AngleAxisd(0.3 * i, Vec3(1, 2, 3).normalized()));
     scene.bodies.push_back(b);
   }
-  for (const char* name : kReferenceEngines) {
+  // DART's two runs in one process differ in the last bits (measured in the release build: positions
+  // equal to 6 digits, not bitwise; the sanitizer build's happened to match): not among these.
+  for (const char* name : {"ode", "bullet"}) {
     INFO(name);
     const auto first = make_engine(name, scene);
     run(*first, 480);

@@ -68,9 +68,9 @@ std::string scene_path(const std::string& name) { return std::string(BOXPILE_FIX
 
 TEST_CASE("The registry's lists are its rows'", "[registry]") {
   const Names all = engine_names();
-  CHECK(all == Names{"own", "own-impulse", "own-penalty", "ode", "bullet", "mujoco"});
+  CHECK(all == Names{"own", "own-impulse", "own-penalty", "ode", "bullet", "mujoco", "dart"});
   CHECK(available_engine_names() == all);
-  CHECK(available_engines_text() == "own, own-impulse, own-penalty, ode, bullet, mujoco");
+  CHECK(available_engines_text() == "own, own-impulse, own-penalty, ode, bullet, mujoco, dart");
   CHECK(default_engines(&DefaultLists::compare) == Names{"own", "ode", "bullet"});
   CHECK(default_engines(&DefaultLists::stability) == Names{"own", "ode", "bullet"});
   CHECK(default_engines(&DefaultLists::main_job) == Names{"own-impulse", "own-penalty", "ode", "bullet"});
@@ -78,7 +78,7 @@ TEST_CASE("The registry's lists are its rows'", "[registry]") {
   CHECK(StabilitySettings{}.engines == default_engines(&DefaultLists::stability));
   Names detector_names;
   for (const DetectorInfo& d : detectors()) detector_names.push_back(d.name);
-  CHECK(detector_names == Names{"own", "ode", "bullet", "bullet_multipoint", "mujoco"});
+  CHECK(detector_names == Names{"own", "ode", "bullet", "bullet_multipoint", "mujoco", "dart", "fcl"});
   // Every row has a title, and every available row a factory that builds it under its name
   // (own-impulse and own-penalty are World under their row's name).
   const Scene scene = fixture("stack_5");
@@ -88,7 +88,7 @@ TEST_CASE("The registry's lists are its rows'", "[registry]") {
     CHECK(make_engine(name, scene)->name() == name);
   }
   CHECK_THAT(error_of([] { check_engine_name("odee"); }),
-             Contains("unknown engine \"odee\"; available: own, own-impulse, own-penalty, ode, bullet, mujoco"));
+             Contains("unknown engine \"odee\"; available: own, own-impulse, own-penalty, ode, bullet, mujoco, dart"));
   // A name is registered once.
   EngineRow twice;
   twice.name = "ode";
@@ -97,13 +97,13 @@ TEST_CASE("The registry's lists are its rows'", "[registry]") {
 }
 
 // The pages that list settings hold `boxpile settings`' own tables (scripts/update-settings-docs
-// copies them): docs/sweeps.md all of them, docs/reference-engines.md ODE's and Bullet's.
+// copies them): docs/sweeps.md all of them, docs/reference-engines.md ODE's, Bullet's and DART's.
 TEST_CASE("The docs' settings tables are the registry's", "[registry]") {
   const std::string all = settings_markdown();
   const std::string docs = std::string(BOXPILE_FIXTURES_DIR) + "/../docs/";
   CHECK(read(docs + "sweeps.md").find(all) != std::string::npos);
   const std::string reference = read(docs + "reference-engines.md");
-  for (const std::string engine : {"ode", "bullet"}) {
+  for (const std::string engine : {"ode", "bullet", "dart"}) {
     INFO(engine);
     const std::size_t start = all.find("### " + engine + "\n");
     REQUIRE(start != std::string::npos);
