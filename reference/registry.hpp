@@ -15,8 +15,10 @@
 //                              kind, unit, range or choices, meaning (sim/io/setting.hpp), an
 //                              apply and a read function. The default is read from NameSettings{}.
 //      NAME_contacts.hpp/.cpp  (optional) the engine's contact detector for one query.
-//    and its sources in reference/CMakeLists.txt (its package in scripts/install-deps and its
-//    find_package/pkg_check_modules beside ODE's and Bullet's).
+//      packages                what it needs installed, a line each (`debian libname-dev ...`),
+//                              which scripts/install-deps reads and the row's title names;
+//    and its sources in reference/CMakeLists.txt (its find_package/pkg_check_modules beside
+//    ODE's and Bullet's).
 // 2. One row in kBuiltInRows (reference/registry.cpp):
 //      typed_row<NameEngine>("name", "Name 1.2 (Debian libname-dev)", &name_settings_table,
 //                            {.compare = true, .stability = true, .main_job = false},

@@ -6,7 +6,11 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -19,6 +23,7 @@
 #include "boxpile/validation/compare.hpp"
 #include "boxpile/validation/detectors.hpp"
 #include "boxpile/validation/engine_settings.hpp"
+#include "boxpile/validation/process_engines.hpp"
 #include "boxpile/validation/stability.hpp"
 
 using namespace boxpile;
@@ -328,4 +333,76 @@ TEST_CASE("docs/scene-format.md's solver and collision keys are the settings tab
     if (s.kind == SettingInfo::Kind::Choice)
       for (const std::string& c : s.choices) CHECK_THAT(cells[4], Contains("\"" + c + "\""));
   }
+}
+
+// Each reference engine names what it needs installed in its folder (reference/NAME/packages);
+// scripts/install-deps installs those, and the engine's title, which help texts and reports show,
+// names the same packages. package.json, which npm ci installs from its lockfile, holds exactly the
+// npm packages the folders name, at their versions.
+TEST_CASE("Each engine's folder names its packages, and install-deps and its title follow them", "[registry]") {
+  add_node_engines();
+  const fs::path root = fs::path(BOXPILE_FIXTURES_DIR).parent_path();
+  struct Package {
+    std::string kind, name, version;
+  };
+  const auto packages_of = [&](const std::string& folder) {
+    std::ifstream in(root / "reference" / folder / "packages");
+    REQUIRE(in);
+    std::vector<Package> out;
+    for (std::string line; std::getline(in, line);) {
+      if (line.empty() || line[0] == '#') continue;
+      std::istringstream words(line);
+      Package p;
+      words >> p.kind >> p.name;
+      if (p.kind == "npm") words >> p.version;
+      INFO(line);
+      CHECK((p.kind == "debian" || p.kind == "npm"));
+      CHECK(!p.name.empty());
+      out.push_back(p);
+    }
+    return out;
+  };
+  // install-deps --list: the Debian packages it would install.
+  Names listed;
+  {
+    const std::string command = "bash '" + (root / "scripts" / "install-deps").string() + "' --list";
+    FILE* pipe = popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    char line[256];
+    while (std::fgets(line, sizeof line, pipe)) listed.emplace_back(std::string(line).substr(0, std::strcspn(line, "\n")));
+    CHECK(pclose(pipe) == 0);
+  }
+  json npm_dependencies;
+  std::ifstream(root / "reference" / "package.json") >> npm_dependencies;
+  npm_dependencies = npm_dependencies.at("dependencies");
+  std::size_t npm_named = 0;
+  std::size_t engines_checked = 0;
+  for (const std::string& engine : engine_names()) {
+    INFO(engine);
+    const std::string& title = find_engine_row(engine)->title;
+    // Ours is built in; other tests add rows of their own at run time. Every engine that is
+    // installed from a package has its folder.
+    std::string folder = engine;
+    std::replace(folder.begin(), folder.end(), '-', '_');
+    if (!fs::exists(root / "reference" / folder / "packages")) {
+      CHECK(title.find("Debian") == std::string::npos);
+      CHECK(title.find("npm") == std::string::npos);
+      continue;
+    }
+    const std::vector<Package> packages = packages_of(folder);
+    CHECK(!packages.empty());
+    for (const Package& p : packages) {
+      INFO(p.name);
+      CHECK_THAT(title, Contains(p.version.empty() ? p.name : p.name + " " + p.version));
+      if (p.kind == "debian") CHECK(std::count(listed.begin(), listed.end(), p.name) == 1);
+      if (p.kind == "npm") {
+        ++npm_named;
+        REQUIRE(npm_dependencies.contains(p.name));
+        CHECK(npm_dependencies[p.name] == p.version);
+      }
+    }
+    ++engines_checked;
+  }
+  CHECK(engines_checked == 7);  // ode, bullet, mujoco, dart, jolt, rapier, mujoco-wasm
+  CHECK(npm_named == npm_dependencies.size());
 }
