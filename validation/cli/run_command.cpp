@@ -29,7 +29,8 @@ constexpr std::size_t kSummaryBodyLimit = 10;
 
 
 // Our solver's statistics of its last step. Impulse method: passes used and the residual
-// (largest approaching normal velocity, m/s) after each pass, for the convergence plots. Penalty
+// (largest approaching normal velocity, m/s) after each pass, and shock propagation's largest
+// velocity change in each pass (m/s), for the convergence plots and rates. Penalty
 // method: its substeps and the work of its springs and anchors so far.
 nlohmann::json solver_json(std::string_view method, const StepStats& st, const WorldCounters& counters,
                            std::size_t events) {
@@ -44,10 +45,13 @@ nlohmann::json solver_json(std::string_view method, const StepStats& st, const W
   nlohmann::json collision = nlohmann::json::array(), contact = nlohmann::json::array();
   for (int k = 0; k < st.collision_passes_used; ++k) collision.push_back(st.collision_residual[k]);
   for (int k = 0; k < st.contact_passes_used; ++k) contact.push_back(st.contact_residual[k]);
+  nlohmann::json shock = nlohmann::json::array();
+  for (int k = 0; k < st.shock_pass_count; ++k) shock.push_back(st.shock_change[k]);
   return {{"method", "impulse"},
           {"collision_passes", st.collision_passes_used},
           {"collision_residuals", collision},
           {"contact_residuals", contact},
+          {"shock_changes", shock},
           {"shock_levels", st.shock_levels},
           {"residual_after_shock", st.residual_after_shock},
           {"collision_events", events}};
