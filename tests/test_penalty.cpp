@@ -335,3 +335,26 @@ TEST_CASE("derived penalty parameters follow their formulas", "[penalty]") {
   CHECK(s.time.dt / (p.substeps - 1) > kStabilityFraction * p.stable_step);
   CHECK_THAT(restitution_for_damping_ratio(damping_ratio_for_restitution(0.5)), Catch::Matchers::WithinRel(0.5, 1e-12));
 }
+
+// The stiffness is per contact point (docs/penalty.md, "Stiffness per point, not per area"): a
+// cube turned 45 degrees on another rests on the octagon's 8 clipped points and sinks half as
+// deep as an aligned one on 4, although its contact area is 0.83 of the aligned one's; reduced to
+// four points it sinks as the aligned one. At rest the springs alone carry the weight, so the
+// sink is m g / (n k) to rounding once the damper has settled the ringing.
+TEST_CASE("the sink between two cubes is m g / (n k) for the n points of their contact", "[penalty]") {
+  const double k = 1e4;
+  const auto sink_between = [&](double yaw, bool reduce) {
+    Scene s = penalty(fixture("stack_5"));
+    s.bodies.resize(2);
+    s.solver.penalty.stiffness = k;
+    s.collision.reduce_to_four = reduce;
+    s.bodies[1].frame.orientation = Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ()));
+    World w(s);
+    run(w, 3.0);
+    return 1.0 - (w.bodies()[1].x.z() - w.bodies()[0].x.z());
+  };
+  const double m = 1.0;
+  CHECK(sink_between(0.0, false) == Approx(m * kG / (4.0 * k)).epsilon(1e-6));
+  CHECK(sink_between(M_PI / 4.0, false) == Approx(m * kG / (8.0 * k)).epsilon(1e-6));
+  CHECK(sink_between(M_PI / 4.0, true) == Approx(m * kG / (4.0 * k)).epsilon(1e-6));
+}
