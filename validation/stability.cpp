@@ -34,14 +34,16 @@ nlohmann::json StabilitySettings::settings_of(const std::string& engine) const {
   return it == engine_settings.end() ? nlohmann::json::object() : it->second;
 }
 
-StabilityCell run_stability_cell(const Scene& scene, std::string_view engine_name, const StabilitySettings& settings,
+StabilityCell run_stability_cell(const Scene& scene_file, std::string_view engine_name, const StabilitySettings& settings,
                                  const std::function<void(double)>& progress) {
   StabilityCell cell;
-  cell.scene = scene.name;
+  cell.scene = scene_file.name;
   cell.engine = std::string(engine_name);
   const nlohmann::json given = settings.settings_of(std::string(engine_name));
-  const std::unique_ptr<Engine> engine = make_engine(engine_name, scene, given);
-  cell.settings = resolved_settings(engine_name, scene, given);
+  const std::unique_ptr<Engine> engine = make_engine(engine_name, scene_file, given);
+  cell.settings = resolved_settings(engine_name, scene_file, given);
+  // What the engine runs (its time step, and our solver's settings): the steps and the rulers.
+  const Scene scene = scene_with_settings(engine_name, scene_file, given);
   const long steps = step_count(scene.time);
   const long every = steps_per_frame(scene.time.dt, settings.frame_rate);
   // Progress at most about a hundred times per cell.

@@ -61,6 +61,9 @@ struct StabilityResult {
   std::vector<std::string> engines;
   std::vector<Scene> scenes;
   std::vector<StabilityCell> cells;  // scene by scene, engines in order within each
+  // The scenes were the whole catalogue (fixtures/hard/): only then do the reports speak of "the
+  // hard scenes".
+  bool whole_catalogue = false;
   double wall_seconds = 0.0;         // the whole run
   // How many cells of our engine ("own") failed; whether none did.
   int own_failures() const;
@@ -71,7 +74,8 @@ struct StabilityResult {
 StabilityCell run_stability_cell(const Scene& scene, std::string_view engine, const StabilitySettings& settings,
                                  const std::function<void(double)>& progress = {});
 
-// Runs every scene in every engine (UnknownEngine for a name not available, before any run).
+// Runs every scene in every engine (UnknownEngine for a name not available, before any run);
+// the result's whole_catalogue is left to the caller.
 StabilityResult run_stability(const std::vector<Scene>& scenes, const StabilitySettings& settings);
 
 // The scene files named by `paths`: a file as it is, a directory's *.json files sorted by name.

@@ -42,9 +42,27 @@ json measures_json(const RunMeasures& m) {
 std::string plot_stem(const StabilityCell& c) { return c.scene + "_" + c.engine; }
 
 // What our engine did: "passes every scene" or "fails N scene(s)".
-std::string own_verdict(const StabilityResult& r) {
-  const int failed = r.own_failures();
-  return failed == 0 ? "passes every scene" : "fails " + std::to_string(failed) + " scene(s)";
+// "passes every scene (2)", "fails 3 of 24 hard scenes": one engine's verdict over the scenes it
+// ran, which are "the hard scenes" only when they were the whole catalogue.
+std::string engine_verdict(const StabilityResult& r, const std::string& engine) {
+  int failed = 0, ran = 0;
+  for (const StabilityCell& c : r.cells) {
+    if (c.engine != engine) continue;
+    ++ran;
+    failed += c.passed ? 0 : 1;
+  }
+  const std::string scenes = r.whole_catalogue ? "hard scene" : "scene";
+  if (failed == 0) return "passes every " + scenes + " (" + std::to_string(ran) + ")";
+  return "fails " + std::to_string(failed) + " of " + std::to_string(ran) + " " + scenes + (ran == 1 ? "" : "s");
+}
+
+// "our engine (own) passes every scene (2); ode fails 1 of 2 scenes": every engine that ran.
+std::string verdicts(const StabilityResult& r) {
+  std::string text;
+  for (const std::string& e : r.engines) {
+    text += (text.empty() ? "" : "; ") + (e == "own" ? std::string("our engine (own)") : e) + " " + engine_verdict(r, e);
+  }
+  return text;
 }
 
 }  // namespace
@@ -83,6 +101,7 @@ json stability_json(const StabilityResult& r) {
                       {"dt", s.time.dt}, {"duration", s.time.duration}});
   }
   return {{"engines", r.engines}, {"scenes", scenes}, {"cells", cells}, {"own_passed", r.own_passed()},
+          {"whole_catalogue", r.whole_catalogue},
           {"wall_seconds", r.wall_seconds}};
 }
 
@@ -117,8 +136,12 @@ std::vector<PlotSpec> stability_plots(const StabilityResult& r) {
 std::string stability_markdown(const StabilityResult& r, const std::vector<std::string>& plots,
                                const std::vector<std::string>& notes) {
   std::ostringstream md;
-  md << "# Stability of the hard scenes\n\n";
-  md << "Our engine " << own_verdict(r) << ". Each cell shows the check that decided it: the first failing one, or the one closest to its limit. "
+  if (r.whole_catalogue) {
+    md << "# Stability of the hard scenes\n\n";
+  } else {
+    md << "# Stability of " << r.scenes.size() << " scene" << (r.scenes.size() == 1 ? "" : "s") << "\n\n";
+  }
+  md << "Verdicts: " << verdicts(r) << ". Each cell shows the check that decided it: the first failing one, or the one closest to its limit. "
         "A reference engine's failure is a finding, not an error of boxpile.\n\n";
   md << "| scene | bodies |";
   for (const std::string& e : r.engines) md << ' ' << e << " |";
@@ -182,7 +205,7 @@ std::string stability_summary(const StabilityResult& r) {
     if (c.passed) continue;
     os << (c.engine == "own" ? "FAIL " : "finding ") << c.scene << " in " << c.engine << ": " << cell_text(c) << '\n';
   }
-  os << "our engine " << own_verdict(r) << '\n';
+  for (const std::string& e : r.engines) os << (e == "own" ? std::string("our engine (own)") : e) << ' ' << engine_verdict(r, e) << '\n';
   return os.str();
 }
 

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "boxpile/sim/io/scene_loader.hpp"
@@ -41,6 +42,17 @@ class StabilityPrinter {
   StatusLine line_;
 };
 
+// The same scene files, however the paths were written (fixtures/hard/ and its files one by one).
+bool same_files(std::vector<std::string> a, std::vector<std::string> b) {
+  auto canonical = [](std::vector<std::string>& files) {
+    for (std::string& f : files) f = std::filesystem::weakly_canonical(f).string();
+    std::sort(files.begin(), files.end());
+  };
+  canonical(a);
+  canonical(b);
+  return a == b;
+}
+
 }  // namespace
 
 void add_stability_command(CLI::App& app, StabilityOptions& options) {
@@ -62,8 +74,9 @@ int run_stability_command(const StabilityOptions& options) {
   check_engines(settings.engines, "--engines");
   settings.engine_settings = parse_set_options(options.set, settings.engines);
   std::vector<Scene> scenes;
-  for (const std::string& file : catalogue_files(options.scenes.empty() ? std::vector<std::string>{data_path("fixtures/hard").string()}
-                                                                        : options.scenes)) {
+  const std::vector<std::string> catalogue = catalogue_files({data_path("fixtures/hard").string()});
+  const std::vector<std::string> files = options.scenes.empty() ? catalogue : catalogue_files(options.scenes);
+  for (const std::string& file : files) {
     const Activity loading("loading " + file);
     scenes.push_back(load_scene(file, options.limits.load()));
     // The caps of run and compare: a scene of 2.4e14 steps is refused, not run until killed.
@@ -83,7 +96,13 @@ int run_stability_command(const StabilityOptions& options) {
   std::cerr << "boxpile stability: " << scenes.size() << " scenes in " << settings.engines.size() << " engines\n";
   const Activity running("running the stability catalogue");
   const std::optional<StabilityResult> result = run_and_report(
-      dir, [&] { return run_stability(scenes, settings); }, write_stability_report, stability_summary,
+      dir,
+      [&] {
+        StabilityResult r = run_stability(scenes, settings);
+        r.whole_catalogue = same_files(files, catalogue);
+        return r;
+      },
+      write_stability_report, stability_summary,
       kStabilityMarkdown);
   if (!result) return kExitInterrupted;
   return result->own_passed() ? kExitOk : kExitFailure;
