@@ -448,3 +448,67 @@ TEST_CASE("Bullet's CCD is a setting that changes the tunnelling verdict", "[reg
   CHECK(stays_behind(ccd));
   CHECK(ccd.settings.at("ccd_motion_threshold") == 0.05);
 }
+
+// Runs at different time steps (`--set ode.dt=...` beside another engine at the scene's) are
+// compared frame against the nearest frame in time, not frame index against frame index.
+TEST_CASE("diff_runs pairs frames by time when the runs' steps differ", "[registry]") {
+  // A body at x = t in both runs: one recorded every 0.1 s, the other every 0.05 s.
+  auto series = [](double spacing, int frames) {
+    FrameSeries f;
+    for (int k = 0; k < frames; ++k) {
+      f.t.push_back(spacing * k);
+      BodyState s;
+      s.name = "box";
+      s.position = Vec3(spacing * k, 0.0, 0.0);
+      f.states.push_back({s});
+    }
+    return f;
+  };
+  const FrameSeries coarse = series(0.1, 11), fine = series(0.05, 21);
+  const RunDifference d = diff_runs("a", coarse, "b", fine, 1e-3, 1e-3);
+  REQUIRE(d.t.size() == 11u);
+  CHECK(d.largest_position < 1e-12);  // the same motion, frame for frame in time
+  CHECK(!d.position_passes);
+  // A run stopped at 0.5 s: the frames after it are left out.
+  const RunDifference stopped = diff_runs("a", coarse, "b", series(0.05, 11), 1e-3, 1e-3);
+  CHECK(stopped.t.size() == 6u);
+  CHECK(stopped.largest_position < 1e-12);
+}
+
+// `stability --tune` on a cell that fails as run: ODE's QuickStep lets the flat drop turn
+// (no_turning 0.07 rad/s at 1/240 s and 20 iterations); the ladder finds a passing rung, records
+// it, and the recorded settings given back through --set pass again.
+TEST_CASE("stability --tune finds a passing setting that --set reproduces", "[registry]") {
+  const fs::path dir = scratch("registry_tune");
+  const std::string hard = std::string(BOXPILE_FIXTURES_DIR) + "/hard/flat_drop.json";
+  REQUIRE(run_boxpile("stability --engines ode --scenes " + hard + " --tune --tune-budget 60 --report " +
+                      (dir / "tuned").string()) == 0);
+  const json cell = json::parse(read(dir / "tuned" / "stability.json")).at("cells").at(0);
+  CHECK(!cell.at("passed").get<bool>());
+  const json& tuned = cell.at("tuned");
+  REQUIRE(tuned.at("passed").get<bool>());
+  const json& settings = tuned.at("settings");
+  // A rung of the ladder: dt halved k times and the iterations doubled as often.
+  const double dt = settings.at("dt").get<double>();
+  const int iterations = settings.at("iterations").get<int>();
+  CHECK(dt < cell.at("settings").at("dt").get<double>());
+  CHECK(iterations * dt == Approx(20 * cell.at("settings").at("dt").get<double>()).epsilon(1e-12));
+  // Its cost is the run's, per simulated second, and above the default's (more steps, more passes).
+  CHECK(tuned.at("us_per_sim_s").get<double>() > 0.0);
+  for (const json& check : tuned.at("checks")) CHECK(check.at("passed").get<bool>());
+  CHECK_THAT(read(dir / "tuned" / "stability.md"), Contains("## The cheapest passing settings (--tune)"));
+
+  std::string set;
+  for (const auto& [key, value] : settings.items()) set += " --set " + key + "=" + value.dump();
+  REQUIRE(run_boxpile("stability --engines ode --scenes " + hard + set + " --report " + (dir / "again").string()) == 0);
+  const json again = json::parse(read(dir / "again" / "stability.json")).at("cells").at(0);
+  CHECK(again.at("passed").get<bool>());
+  CHECK(again.at("settings").at("dt") == settings.at("dt"));
+  // A budget of 0 s stops at the run as given: the closest attempt is it, and says so.
+  REQUIRE(run_boxpile("stability --engines ode --scenes " + hard + " --tune --tune-budget 0 --report " +
+                      (dir / "no_budget").string()) == 0);
+  const json spent = json::parse(read(dir / "no_budget" / "stability.json")).at("cells").at(0).at("tuned");
+  CHECK(!spent.at("passed").get<bool>());
+  CHECK(spent.at("out_of_budget").get<bool>());
+  CHECK(spent.at("attempts") == 1);
+}

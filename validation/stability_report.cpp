@@ -1,5 +1,6 @@
 #include "boxpile/validation/stability_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -77,13 +78,65 @@ std::string cell_text(const StabilityCell& cell) {
   return s;
 }
 
+namespace {
+
+json checks_json(const std::vector<SceneCheckResult>& checks) {
+  json out = json::array();
+  for (const SceneCheckResult& k : checks) {
+    out.push_back({{"name", k.name}, {"value", number(k.value)}, {"limit", number(k.limit)},
+                   {"relation", k.at_least ? ">=" : "<="}, {"unit", k.unit}, {"passed", k.passed}});
+  }
+  return out;
+}
+
+// "dt=0.00208 iterations=40", or "the defaults" / "as given" when nothing was added.
+std::string settings_text(const json& settings) {
+  std::string text;
+  for (const auto& [key, value] : settings.items()) {
+    text += text.empty() ? "" : " ";
+    text += key;
+    text += "=";
+    text += value.is_number_float() ? fmt(value.get<double>(), "%.6g") : value.dump();
+  }
+  return text.empty() ? "as run" : text;
+}
+
+// The cheapest passing setting of our engine on `scene` (its tuned cost), 0 when none passed.
+double own_cost(const StabilityResult& r, const std::string& scene) {
+  for (const StabilityCell& c : r.cells)
+    if (c.scene == scene && c.engine == "own" && c.tuned && c.tuned->passed) return c.tuned->us_per_sim_s;
+  return 0.0;
+}
+
+// One cell's tuned result: "pass with dt=... iterations=40, 812 µs/s (3.1x own)", or the closest
+// attempt and its worst miss.
+std::string tuned_text(const StabilityResult& r, const StabilityCell& c) {
+  const TunedCell& t = *c.tuned;
+  std::string text = (t.passed ? "pass with " : "none passed; closest ") + settings_text(t.settings) + ", " +
+                     fmt(t.us_per_sim_s, "%.0f") + " µs/s";
+  const double own = own_cost(r, c.scene);
+  if (t.passed && own > 0.0 && c.engine != "own") text += " (" + fmt(t.us_per_sim_s / own, "%.2g") + "x own)";
+  if (!t.passed) {
+    const SceneCheckResult* worst = nullptr;
+    for (const SceneCheckResult& k : t.checks)
+      if (!worst || miss_factor(k) > miss_factor(*worst)) worst = &k;
+    if (worst) text += ": " + describe(*worst) + " (" + fmt(miss_factor(*worst), "%.3g") + " times its limit)";
+    if (t.out_of_budget) text += ", budget spent";
+  }
+  return text + ", " + std::to_string(t.attempts) + " runs";
+}
+
+}  // namespace
+
 json stability_json(const StabilityResult& r) {
   json cells = json::array();
   for (const StabilityCell& c : r.cells) {
-    json checks = json::array();
-    for (const SceneCheckResult& k : c.checks) {
-      checks.push_back({{"name", k.name}, {"value", number(k.value)}, {"limit", number(k.limit)},
-                        {"relation", k.at_least ? ">=" : "<="}, {"unit", k.unit}, {"passed", k.passed}});
+    const json checks = checks_json(c.checks);
+    json tuned = nullptr;
+    if (c.tuned) {
+      tuned = {{"passed", c.tuned->passed}, {"settings", c.tuned->settings},
+               {"us_per_sim_s", number(c.tuned->us_per_sim_s)}, {"checks", checks_json(c.tuned->checks)},
+               {"attempts", c.tuned->attempts}, {"out_of_budget", c.tuned->out_of_budget}};
     }
     cells.push_back({{"scene", c.scene},
                      {"engine", c.engine},
@@ -93,7 +146,9 @@ json stability_json(const StabilityResult& r) {
                      {"measures", measures_json(c.measures)},
                      {"steps", c.steps},
                      {"us_per_step", number(c.us_per_step)},
+                     {"us_per_sim_s", number(c.us_per_sim_s())},
                      {"wall_seconds", number(c.wall_seconds)}});
+    if (c.tuned) cells.back()["tuned"] = tuned;
   }
   json scenes = json::array();
   for (const Scene& s : r.scenes) {
@@ -156,6 +211,18 @@ std::string stability_markdown(const StabilityResult& r, const std::vector<std::
     }
     md << '\n';
   }
+  if (std::any_of(r.cells.begin(), r.cells.end(), [](const StabilityCell& c) { return c.tuned.has_value(); })) {
+    md << "\n## The cheapest passing settings (--tune)\n\nPer cell: the verdict as run, then the cheapest "
+          "settings found that pass every check (added to those given; `--set` reproduces them), their cost in µs of "
+          "stepping per simulated second and its ratio to our engine's cheapest passing one on the scene; where "
+          "none passed within the budget, the closest attempt and its worst check.\n\n"
+          "| scene | engine | as run | tuned |\n|---|---|---|---|\n";
+    for (const StabilityCell& c : r.cells) {
+      if (!c.tuned) continue;
+      md << "| " << c.scene << " | " << c.engine << " | " << (c.passed ? "pass" : "FAIL") << ", "
+         << fmt(c.us_per_sim_s(), "%.0f") << " µs/s | " << tuned_text(r, c) << " |\n";
+    }
+  }
   md << "\n## Failures per engine\n\n| engine | failing scenes | µs per step (mean over the cells) |\n|---|---|---|\n";
   for (const std::string& e : r.engines) {
     int failed = 0, cells = 0;
@@ -202,8 +269,11 @@ std::string stability_markdown(const StabilityResult& r, const std::vector<std::
 std::string stability_summary(const StabilityResult& r) {
   std::ostringstream os;
   for (const StabilityCell& c : r.cells) {
-    if (c.passed) continue;
-    os << (c.engine == "own" ? "FAIL " : "finding ") << c.scene << " in " << c.engine << ": " << cell_text(c) << '\n';
+    if (!c.passed) os << (c.engine == "own" ? "FAIL " : "finding ") << c.scene << " in " << c.engine << ": " << cell_text(c) << '\n';
+    if (c.tuned) {
+      os << "tuned " << c.scene << " in " << c.engine << " (as run: " << (c.passed ? "pass" : "FAIL") << ", "
+         << fmt(c.us_per_sim_s(), "%.0f") << " µs/s): " << tuned_text(r, c) << '\n';
+    }
   }
   for (const std::string& e : r.engines) os << (e == "own" ? std::string("our engine (own)") : e) << ' ' << engine_verdict(r, e) << '\n';
   return os.str();
