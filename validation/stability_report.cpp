@@ -89,7 +89,7 @@ json checks_json(const std::vector<SceneCheckResult>& checks) {
   return out;
 }
 
-// "dt=0.00208 iterations=40", or "the defaults" / "as given" when nothing was added.
+// "dt=0.00208 iterations=40"; empty when nothing was added to the settings given.
 std::string settings_text(const json& settings) {
   std::string text;
   for (const auto& [key, value] : settings.items()) {
@@ -98,7 +98,7 @@ std::string settings_text(const json& settings) {
     text += "=";
     text += value.is_number_float() ? fmt(value.get<double>(), "%.6g") : value.dump();
   }
-  return text.empty() ? "as run" : text;
+  return text;
 }
 
 // The cheapest passing setting of our engine on `scene` (its tuned cost), 0 when none passed.
@@ -112,8 +112,10 @@ double own_cost(const StabilityResult& r, const std::string& scene) {
 // attempt and its worst miss.
 std::string tuned_text(const StabilityResult& r, const StabilityCell& c) {
   const TunedCell& t = *c.tuned;
-  std::string text = (t.passed ? "pass with " : "none passed; closest ") + settings_text(t.settings) + ", " +
-                     fmt(t.us_per_sim_s, "%.0f") + " µs/s";
+  const std::string tried = settings_text(t.settings);
+  std::string text = t.passed ? (tried.empty() ? std::string("passes as run") : "pass with " + tried)
+                              : "none passed; closest " + (tried.empty() ? std::string("as run") : tried);
+  text += ", " + fmt(t.us_per_sim_s, "%.0f") + " µs/s";
   const double own = own_cost(r, c.scene);
   if (t.passed && own > 0.0 && c.engine != "own") text += " (" + fmt(t.us_per_sim_s / own, "%.2g") + "x own)";
   if (!t.passed) {
