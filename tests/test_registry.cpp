@@ -355,7 +355,7 @@ TEST_CASE("dt is a setting of every engine, the scene's by default", "[registry]
   CHECK_THAT(settings_markdown(), Contains("| `dt` | number in (0, 1] | the scene's time.dt | s |"));
 }
 
-TEST_CASE("--set ENGINE.dt runs that engine at its own step in run, compare and stability", "[registry]") {
+TEST_CASE("An engine given its own dt by --set runs at it in run, compare and stability", "[registry]") {
   const fs::path dir = scratch("registry_dt");
   const std::string scene = scene_path("stack_5");
   // compare: ODE at 2 ms beside Bullet at the scene's step, each recorded.
