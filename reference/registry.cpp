@@ -202,6 +202,25 @@ Registry& registry() {
   return r;
 }
 
+// The settings every row shares, applied here rather than by each row: the time step.
+const std::string& time_step_key() { return time_step_setting().key; }
+
+json given_or_empty(const json& settings) { return settings.is_null() ? json::object() : settings; }
+
+// `scene` at the time step the settings give (its own when they give none).
+Scene at_time_step(const Scene& scene, const json& settings) {
+  Scene s = scene;
+  if (const auto dt = settings.find(time_step_key()); dt != settings.end()) s.time.dt = dt->get<double>();
+  return s;
+}
+
+// The settings a row's own functions read: all but the shared ones.
+json row_settings(const json& settings) {
+  json own = given_or_empty(settings);
+  own.erase(time_step_key());
+  return own;
+}
+
 }  // namespace
 
 void add_engine(EngineRow row) { registry().add(std::move(row)); }
@@ -251,22 +270,27 @@ const EngineRow& engine_row(std::string_view name) {
 void check_engine_name(std::string_view name) { engine_row(name); }
 
 std::unique_ptr<Engine> make_engine(std::string_view name, const Scene& scene, const json& settings) {
-  return engine_row(name).make(scene, settings.is_null() ? json::object() : settings);
+  const json given = given_or_empty(settings);
+  return engine_row(name).make(at_time_step(scene, given), row_settings(given));
 }
 
 Scene scene_with_settings(std::string_view name, const Scene& scene, const json& settings) {
   const EngineRow& row = engine_row(name);
-  return row.scene_with ? row.scene_with(scene, settings.is_null() ? json::object() : settings) : scene;
+  const json given = given_or_empty(settings);
+  const Scene s = at_time_step(scene, given);
+  return row.scene_with ? row.scene_with(s, row_settings(given)) : s;
 }
 
 long engine_work_per_step(std::string_view name, const Scene& scene, const json& settings) {
   const EngineRow& row = engine_row(name);
-  return row.work_per_step ? row.work_per_step(scene, settings.is_null() ? json::object() : settings) : 1;
+  const json given = given_or_empty(settings);
+  return row.work_per_step ? row.work_per_step(at_time_step(scene, given), row_settings(given)) : 1;
 }
 
 std::string engine_time_step_problem(std::string_view name, const Scene& scene, const json& settings) {
   const EngineRow& row = engine_row(name);
-  return row.time_step_problem ? row.time_step_problem(scene, settings.is_null() ? json::object() : settings) : "";
+  const json given = given_or_empty(settings);
+  return row.time_step_problem ? row.time_step_problem(at_time_step(scene, given), row_settings(given)) : "";
 }
 
 std::string engine_runs_as(std::string_view name, const Scene& scene) {
@@ -276,15 +300,29 @@ std::string engine_runs_as(std::string_view name, const Scene& scene) {
 
 std::vector<SettingInfo> engine_settings(std::string_view name) {
   const EngineRow& row = engine_row(name);
-  return row.settings ? row.settings() : std::vector<SettingInfo>{};
+  std::vector<SettingInfo> out{time_step_setting()};
+  if (!row.settings) return out;
+  for (SettingInfo& s : row.settings()) {
+    // A row of the engine's own by the shared key (an engine program declaring "dt") would be a
+    // second meaning of one name: the registry's applies.
+    if (s.key != time_step_key()) out.push_back(std::move(s));
+  }
+  return out;
 }
 
 json resolved_settings(std::string_view name, const Scene& scene, const json& settings) {
   const EngineRow& row = engine_row(name);
-  const json given = settings.is_null() ? json::object() : settings;
-  if (row.resolved) return row.resolved(scene, given);
+  const json given = given_or_empty(settings);
+  const Scene s = at_time_step(scene, given);
+  const json own = row_settings(given);
   json out = json::object();
-  for (const SettingInfo& s : engine_settings(name)) out[s.key] = given.contains(s.key) ? given[s.key] : s.default_value;
+  if (row.resolved) {
+    out = row.resolved(s, own);
+  } else {
+    for (const SettingInfo& info : engine_settings(name))
+      out[info.key] = own.contains(info.key) ? own[info.key] : info.default_value;
+  }
+  out[time_step_key()] = s.time.dt;
   return out;
 }
 

@@ -72,7 +72,9 @@ struct EngineRow {
   // One line: the engine, its version, and how it is installed.
   std::string title;
   // Builds the engine for a scene with settings {key: value}, each already checked against
-  // `settings()` (check_engine_settings); keys left out take their defaults.
+  // `settings()` (check_engine_settings); keys left out take their defaults. The settings every
+  // engine shares (the time step, sim/io/setting.hpp's time_step_setting()) are not the row's:
+  // the registry writes them into the scene before it calls any of the row's functions.
   std::function<std::unique_ptr<Engine>(const Scene& scene, const nlohmann::json& settings)> make;
   // The engine's settings table (empty when it has none, or has no function).
   std::function<std::vector<SettingInfo>()> settings;
@@ -127,8 +129,8 @@ const EngineRow& engine_row(std::string_view name);
 std::unique_ptr<Engine> make_engine(std::string_view name, const Scene& scene,
                                     const nlohmann::json& settings = nlohmann::json::object());
 
-// `scene` with `name`'s settings written in when they are the scene's (EngineRow::scene_with),
-// else `scene` unchanged.
+// `scene` with `name`'s settings written in: the time step, and the row's own when they are the
+// scene's (EngineRow::scene_with). What every command steps and measures.
 Scene scene_with_settings(std::string_view name, const Scene& scene, const nlohmann::json& settings);
 
 // EngineRow::work_per_step, time_step_problem and runs_as of `name` (1, "" and `name` when the
@@ -137,7 +139,7 @@ long engine_work_per_step(std::string_view name, const Scene& scene, const nlohm
 std::string engine_time_step_problem(std::string_view name, const Scene& scene, const nlohmann::json& settings);
 std::string engine_runs_as(std::string_view name, const Scene& scene);
 
-// The settings `name` declares.
+// The settings `name` declares: the time step first (every engine's), then the row's.
 std::vector<SettingInfo> engine_settings(std::string_view name);
 // Every setting's value `name` runs with for `scene` and `settings` (defaults included).
 nlohmann::json resolved_settings(std::string_view name, const Scene& scene,

@@ -134,11 +134,12 @@ TEST_CASE("A row added at run time joins every list, and builds with its announc
   CHECK_THAT(settings_markdown(), Contains("### " + name));
 
   // Its settings are the ones it announced: checked, defaulted and recorded like any table's.
-  REQUIRE(engine_settings(name).size() == 1);
-  CHECK(resolved_settings(name, fixture("stack_5")) == json({{"passes", 7}}));
+  REQUIRE(engine_settings(name).size() == 2);  // the time step, every engine's, and its own
+  const double dt = fixture("stack_5").time.dt;
+  CHECK(resolved_settings(name, fixture("stack_5")) == json({{"dt", dt}, {"passes", 7}}));
   const auto set = parse_set_options({name + ".passes=3"}, {name, "ode"});
   CHECK(set.at(name) == json({{"passes", 3}}));
-  CHECK(resolved_settings(name, fixture("stack_5"), set.at(name)) == json({{"passes", 3}}));
+  CHECK(resolved_settings(name, fixture("stack_5"), set.at(name)) == json({{"dt", dt}, {"passes", 3}}));
   CHECK_THROWS_AS(parse_set_options({name + ".passes=65"}, {name}), InputError);
   const std::unique_ptr<Engine> engine = make_engine(name, fixture("stack_5"), set.at(name));
   CHECK(engine->name() == name);
@@ -405,4 +406,185 @@ TEST_CASE("Each engine's folder names its packages, and install-deps and its tit
   }
   CHECK(engines_checked == 7);  // ode, bullet, mujoco, dart, jolt, rapier, mujoco-wasm
   CHECK(npm_named == npm_dependencies.size());
+
+// The time step is every engine's setting, declared once: listed first, recorded at the scene's
+// value, and when given it is the step the engine takes (its clock after three steps).
+TEST_CASE("dt is a setting of every engine, the scene's by default", "[registry]") {
+  const Scene scene = fixture("stack_5");
+  for (const std::string& name : available_engine_names()) {
+    INFO(name);
+    const std::vector<SettingInfo> settings = engine_settings(name);
+    REQUIRE(!settings.empty());
+    CHECK(settings.front().key == "dt");
+    CHECK(settings.front().unit == "s");
+    CHECK(std::count_if(settings.begin(), settings.end(), [](const SettingInfo& s) { return s.key == "dt"; }) == 1);
+    CHECK(resolved_settings(name, scene).at("dt") == scene.time.dt);
+    const json set = parse_set_options({"dt=0.002"}, {name}).at(name);
+    CHECK(resolved_settings(name, scene, set).at("dt") == 0.002);
+    CHECK(scene_with_settings(name, scene, set).time.dt == 0.002);
+    const std::unique_ptr<Engine> engine = make_engine(name, scene, set);
+    for (int k = 0; k < 3; ++k) engine->step();
+    CHECK(engine->time() == Approx(0.006).margin(1e-15));
+  }
+  CHECK_THAT(error_of([] { parse_set_options({"ode.dt=0"}, {"ode"}); }), Contains("must be in (0, 1] s"));
+  CHECK_THAT(error_of([] { parse_set_options({"ode.dt=2"}, {"ode"}); }), Contains("must be in (0, 1] s"));
+  CHECK_THAT(settings_markdown(), Contains("| `dt` | number in (0, 1] | the scene's time.dt | s |"));
+}
+
+TEST_CASE("An engine given its own dt by --set runs at it in run, compare and stability", "[registry]") {
+  const fs::path dir = scratch("registry_dt");
+  const std::string scene = scene_path("stack_5");
+  // compare: ODE at 2 ms beside Bullet at the scene's step, each recorded.
+  REQUIRE(run_boxpile("compare " + scene + " --duration 0.1 --engines ode,bullet --set ode.dt=0.002 --report " +
+                      (dir / "compare").string()) == 0);
+  const json engines = json::parse(read(dir / "compare" / "report.json")).at("engines");
+  CHECK(engines.at("ode").at("settings").at("dt") == 0.002);
+  CHECK(engines.at("bullet").at("settings").at("dt") == fixture("stack_5").time.dt);
+  // stability: the steps run are the duration over the engine's own dt.
+  const std::string hard = std::string(BOXPILE_FIXTURES_DIR) + "/hard/edge_drop.json";
+  REQUIRE(run_boxpile("stability --engines ode --scenes " + hard + " --set dt=0.01 --report " +
+                      (dir / "stability").string()) == 0);
+  const json cell = json::parse(read(dir / "stability" / "stability.json")).at("cells").at(0);
+  CHECK(cell.at("settings").at("dt") == 0.01);
+  CHECK(cell.at("steps") == 150);  // 1.5 s
+  // Refused, nothing written: beside --dt, past the step cap, out of range.
+  CHECK(run_boxpile("run " + scene + " --engine ode --dt 0.01 --set dt=0.02") == 2);
+  CHECK(run_boxpile("stability --engines ode --scenes " + hard + " --set dt=1e-7 --max-steps 1000 --report " +
+                    (dir / "capped").string()) == 2);
+  CHECK(!fs::exists(dir / "capped"));
+  CHECK(run_boxpile("compare " + scene + " --engines ode --set dt=-1 --report " + (dir / "negative").string()) == 2);
+  CHECK(!fs::exists(dir / "negative"));
+  CHECK(run_boxpile("run " + scene + " --engine own --duration 0.05 --set dt=0.01") == 0);
+}
+
+namespace {
+
+// A box sliding on frictionless ground at `speed` (m/s) along x for `steps` steps of 0.01 s in
+// `engine` with `words`: how far it went (m). On the ground, because ODE never puts a body to
+// sleep in mid-air (one without joints).
+double slide(const std::string& engine, double speed, int steps, const std::vector<std::string>& words) {
+  Scene s;
+  s.ground = HalfSpace{};
+  s.material.friction = 0.0;
+  s.time.dt = 0.01;
+  BodyDesc box;
+  box.name = "box";
+  box.mass = 1.0;
+  box.boxes = {BoxShape{}};
+  box.frame.position = Vec3(0.0, 0.0, 0.5);
+  box.velocity = Vec3(speed, 0.0, 0.0);
+  s.bodies.push_back(box);
+  const std::unique_ptr<Engine> e = make_engine(engine, s, parse_setting_words(engine, words, "test"));
+  for (int k = 0; k < steps; ++k) e->step();
+  std::vector<BodyState> states;
+  e->body_states(states);
+  return states.at(0).position.x();
+}
+
+}  // namespace
+
+// Sleeping is a setting, off by default: on, a body slower than the threshold stops after the
+// engine's wait (ODE: auto_disable_steps steps; Bullet: 2 s), off, it keeps its speed.
+TEST_CASE("ODE's auto-disable and Bullet's sleeping are settings that take effect", "[registry]") {
+  // ODE: 0.005 m/s, under the 0.01 m/s threshold, for 100 steps of 0.01 s: 5 mm awake; asleep
+  // after auto_disable_steps calm steps, which begin once ERP's push out of the first step's
+  // overlap (0.2 x 1 mm per 0.01 s, 0.02 m/s at first) has died down: up to 15 steps later.
+  const double mm_per_step = 0.005 * 0.01;
+  CHECK(slide("ode", 0.005, 100, {}) == Approx(0.005).epsilon(1e-9));
+  const double ten = slide("ode", 0.005, 100, {"auto_disable=true"});
+  CHECK(ten >= 10 * mm_per_step);
+  CHECK(ten <= 25 * mm_per_step);
+  const double fifty = slide("ode", 0.005, 100, {"auto_disable=true", "auto_disable_steps=50"});
+  CHECK(fifty - ten == Approx(40 * mm_per_step).margin(1e-9));
+  CHECK(slide("ode", 0.005, 100, {"auto_disable=true", "auto_disable_linear_threshold=0.001"}) ==
+        Approx(0.005).epsilon(1e-9));
+  // Bullet: 0.5 m/s, under its 0.8 m/s threshold, for 3 s: 1.5 m awake, asleep after 2 s (1 m).
+  CHECK(slide("bullet", 0.5, 300, {}) == Approx(1.5).epsilon(1e-9));
+  CHECK(slide("bullet", 0.5, 300, {"sleeping=true"}) == Approx(1.0).margin(0.011));
+  CHECK(slide("bullet", 0.5, 300, {"sleeping=true", "linear_sleeping_threshold=0.1"}) == Approx(1.5).epsilon(1e-9));
+}
+
+// Bullet's continuous collision detection is a setting, off by default: the catalogue's shot at
+// 100 m/s (0.42 m a step) passes through the 2 cm plate without it and stays in front of it with
+// it (Bullet's contact then still lets it 4 cm deep: the penetration check fails either way).
+TEST_CASE("Bullet's CCD is a setting that changes the tunnelling verdict", "[registry]") {
+  const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/hard/tunnelling.json");
+  auto stays_behind = [](const StabilityCell& cell) {
+    for (const SceneCheckResult& c : cell.checks)
+      if (c.name == "stays_behind shot") return c.passed;
+    FAIL("no stays_behind check");
+    return false;
+  };
+  StabilitySettings settings;
+  settings.engines = {"bullet"};
+  CHECK(!stays_behind(run_stability_cell(scene, "bullet", settings)));
+  settings.engine_settings["bullet"] =
+      parse_set_options({"ccd_motion_threshold=0.05", "ccd_swept_sphere_radius=0.1"}, {"bullet"}).at("bullet");
+  const StabilityCell ccd = run_stability_cell(scene, "bullet", settings);
+  CHECK(stays_behind(ccd));
+  CHECK(ccd.settings.at("ccd_motion_threshold") == 0.05);
+}
+
+// Runs at different time steps (`--set ode.dt=...` beside another engine at the scene's) are
+// compared frame against the nearest frame in time, not frame index against frame index.
+TEST_CASE("diff_runs pairs frames by time when the runs' steps differ", "[registry]") {
+  // A body at x = t in both runs: one recorded every 0.1 s, the other every 0.05 s.
+  auto series = [](double spacing, int frames) {
+    FrameSeries f;
+    for (int k = 0; k < frames; ++k) {
+      f.t.push_back(spacing * k);
+      BodyState s;
+      s.name = "box";
+      s.position = Vec3(spacing * k, 0.0, 0.0);
+      f.states.push_back({s});
+    }
+    return f;
+  };
+  const FrameSeries coarse = series(0.1, 11), fine = series(0.05, 21);
+  const RunDifference d = diff_runs("a", coarse, "b", fine, 1e-3, 1e-3);
+  REQUIRE(d.t.size() == 11u);
+  CHECK(d.largest_position < 1e-12);  // the same motion, frame for frame in time
+  CHECK(!d.position_passes);
+  // A run stopped at 0.5 s: the frames after it are left out.
+  const RunDifference stopped = diff_runs("a", coarse, "b", series(0.05, 11), 1e-3, 1e-3);
+  CHECK(stopped.t.size() == 6u);
+  CHECK(stopped.largest_position < 1e-12);
+}
+
+// `stability --tune` on a cell that fails as run: ODE's QuickStep lets the flat drop turn
+// (no_turning 0.07 rad/s at 1/240 s and 20 iterations); the ladder finds a passing rung, records
+// it, and the recorded settings given back through --set pass again.
+TEST_CASE("stability --tune finds a passing setting that --set reproduces", "[registry]") {
+  const fs::path dir = scratch("registry_tune");
+  const std::string hard = std::string(BOXPILE_FIXTURES_DIR) + "/hard/flat_drop.json";
+  REQUIRE(run_boxpile("stability --engines ode --scenes " + hard + " --tune --tune-budget 60 --report " +
+                      (dir / "tuned").string()) == 0);
+  const json cell = json::parse(read(dir / "tuned" / "stability.json")).at("cells").at(0);
+  CHECK(!cell.at("passed").get<bool>());
+  const json& tuned = cell.at("tuned");
+  REQUIRE(tuned.at("passed").get<bool>());
+  const json& settings = tuned.at("settings");
+  // A rung of the ladder: dt halved k times and the iterations doubled as often.
+  const double dt = settings.at("dt").get<double>();
+  const int iterations = settings.at("iterations").get<int>();
+  CHECK(dt < cell.at("settings").at("dt").get<double>());
+  CHECK(iterations * dt == Approx(20 * cell.at("settings").at("dt").get<double>()).epsilon(1e-12));
+  // Its cost is the run's, per simulated second, and above the default's (more steps, more passes).
+  CHECK(tuned.at("us_per_sim_s").get<double>() > 0.0);
+  for (const json& check : tuned.at("checks")) CHECK(check.at("passed").get<bool>());
+  CHECK_THAT(read(dir / "tuned" / "stability.md"), Contains("## The cheapest passing settings (--tune)"));
+
+  std::string set;
+  for (const auto& [key, value] : settings.items()) set += " --set " + key + "=" + value.dump();
+  REQUIRE(run_boxpile("stability --engines ode --scenes " + hard + set + " --report " + (dir / "again").string()) == 0);
+  const json again = json::parse(read(dir / "again" / "stability.json")).at("cells").at(0);
+  CHECK(again.at("passed").get<bool>());
+  CHECK(again.at("settings").at("dt") == settings.at("dt"));
+  // A budget of 0 s stops at the run as given: the closest attempt is it, and says so.
+  REQUIRE(run_boxpile("stability --engines ode --scenes " + hard + " --tune --tune-budget 0 --report " +
+                      (dir / "no_budget").string()) == 0);
+  const json spent = json::parse(read(dir / "no_budget" / "stability.json")).at("cells").at(0).at("tuned");
+  CHECK(!spent.at("passed").get<bool>());
+  CHECK(spent.at("out_of_budget").get<bool>());
+  CHECK(spent.at("attempts") == 1);
 }

@@ -105,6 +105,28 @@ TEST_CASE("A grid's cells are the product of each engine's settings, in one fixe
   }
 }
 
+TEST_CASE("An engine's own dt in a grid is its cells' time step", "[sweep]") {
+  const fs::path dir = scratch("sweep_grid_dt");
+  const json engines = {{"ode", {{"dt", {0.01, 0.005}}, {"iterations", {5}}}}, {"bullet", json::object()}};
+  const SweepGrid g = load_grid(grid_file(dir, engines).string());
+  const std::vector<CellSpec> cells = grid_cells(g);
+  // bullet at the scene's dt, ODE at each of its own; "dt" is the cell's step, not a setting.
+  REQUIRE(cells.size() == 3u);
+  CHECK(cells[0].engine == "bullet");
+  CHECK(cells[0].dt == g.scenes[0].scene.time.dt);
+  CHECK(cells[1].dt == 0.01);
+  CHECK(cells[2].dt == 0.005);
+  CHECK(cells[1].settings == json({{"iterations", 5}}));
+  CHECK(cell_config(g, cells[1]).scene.time.dt == 0.01);
+  // Beside the grid's own time steps it is refused: one place for them.
+  json grid = json::parse(read(dir / "grid.json"));
+  grid["dt"] = {0.002};
+  write(dir / "grid.json", grid.dump());
+  CHECK_THROWS_WITH(load_grid((dir / "grid.json").string()),
+                    Catch::Matchers::Contains("\"dt\"") && Catch::Matchers::Contains("engine \"ode\"'s own"));
+  CHECK_THAT(grid_error(dir, {{"ode", {{"dt", {0.0}}}}}), Catch::Matchers::Contains("must be in (0, 1] s"));
+}
+
 TEST_CASE("Grid errors name the key before anything runs", "[sweep]") {
   const fs::path dir = scratch("sweep_grid_errors");
   using Catch::Matchers::Contains;
@@ -349,14 +371,16 @@ TEST_CASE("A setting reaches the field it names, from a grid or from run --set",
   CHECK(p.collision.margin == 0.002);
   CHECK(p.solver.penalty.substeps == 4);
 
-  // Every listed setting of every engine is accepted by its own check at its lower bound.
+  // Every listed setting of every engine is accepted by its own check at its lower bound (at
+  // its upper one when the range excludes the lower, as the time step's does), and refused past it.
   for (const std::string& engine : available_engine_names()) {
     for (const SettingInfo& s : engine_settings(engine)) {
       INFO(engine << "." << s.key);
       json value = s.kind == SettingInfo::Kind::Boolean ? json(true)
                    : s.kind == SettingInfo::Kind::Choice ? json(s.choices.front())
-                                                           : json(s.min);
+                                                           : json(s.open_min ? s.max : s.min);
       CHECK_NOTHROW(parse_setting_words(engine, {std::string(s.key) + "=" + value.dump()}, "test"));
+      if (s.open_min) CHECK_THROWS_AS(parse_setting_words(engine, {s.key + "=" + json(s.min).dump()}, "test"), InputError);
     }
   }
   // docs/sweeps.md lists them exactly as `boxpile settings` prints them (per engine, with units).

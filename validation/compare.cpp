@@ -107,13 +107,15 @@ class WireWatch {
   std::vector<WireReport> reports_;
 };
 
-EngineRun run_one(const Scene& scene, std::string_view name, const CompareSettings& settings,
+EngineRun run_one(const Scene& scene_file, std::string_view name, const CompareSettings& settings,
                   RecordDetail detail, const std::function<void(double)>& progress) {
   EngineRun run;
   run.engine = std::string(name);
   const nlohmann::json given = settings.settings_of(run.engine);
-  const std::unique_ptr<Engine> engine = make_engine(name, scene, given);
-  run.settings = resolved_settings(name, scene, given);
+  const std::unique_ptr<Engine> engine = make_engine(name, scene_file, given);
+  run.settings = resolved_settings(name, scene_file, given);
+  // What the engine runs (its time step, and our solver's settings): the steps and the rulers.
+  const Scene scene = scene_with_settings(name, scene_file, given);
   const bool full = detail == RecordDetail::Full;
   const double dt = scene.time.dt;
   const long steps = step_count(scene.time);
@@ -264,7 +266,17 @@ RunDifference diff_runs(const std::string& a, const FrameSeries& fa, const std::
   RunDifference d;
   d.a = a;
   d.b = b;
-  const std::size_t frames = std::min(fa.t.size(), fb.t.size());
+  // Each frame of `fa` against `fb`'s nearest in time: one frame for one when both ran at one
+  // time step, the frames of runs at different time steps (`--set ENGINE.dt`) up to half a frame
+  // apart otherwise. `fa`'s frames past `fb`'s last (a run stopped early) are left out.
+  std::vector<std::size_t> match;
+  const double half_frame = fa.t.size() > 1 ? 0.5 * (fa.t[1] - fa.t[0]) : 0.0;
+  for (std::size_t f = 0, g = 0; f < fa.t.size() && !fb.t.empty(); ++f) {
+    if (fa.t[f] > fb.t.back() + half_frame) break;
+    while (g + 1 < fb.t.size() && std::abs(fb.t[g + 1] - fa.t[f]) <= std::abs(fb.t[g] - fa.t[f])) ++g;
+    match.push_back(g);
+  }
+  const std::size_t frames = match.size();
   d.t.assign(fa.t.begin(), fa.t.begin() + static_cast<std::ptrdiff_t>(frames));
   const std::size_t n = frames > 0 ? fa.states[0].size() : 0;
   d.bodies.resize(n);
@@ -276,7 +288,7 @@ RunDifference diff_runs(const std::string& a, const FrameSeries& fa, const std::
     body.orientation.resize(frames);
     for (std::size_t f = 0; f < frames; ++f) {
       const BodyState& sa = fa.states[f][i];
-      const BodyState& sb = fb.states[f][i];
+      const BodyState& sb = fb.states[match[f]][i];
       const double dp = (sa.position - sb.position).norm();
       const double dq = sa.orientation.angularDistance(sb.orientation);
       body.position[f] = dp;

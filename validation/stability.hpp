@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <map>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -28,6 +29,7 @@ struct StabilityProgress {
   double fraction = 0.0;         // of this cell's steps
   double elapsed = 0.0;          // s since the catalogue started
   double remaining = 0.0;        // s, estimated (0 until the first cell has run a while)
+  std::string_view tuning;       // with --tune, the attempt running ("dt/4, iterations 80"); empty else
 };
 
 struct StabilitySettings {
@@ -40,6 +42,24 @@ struct StabilitySettings {
   nlohmann::json settings_of(const std::string& engine) const;
   double frame_rate = 30.0;  // 1/s: energy and kinetic energy recorded for the plots
   std::function<void(const StabilityProgress&)> progress;
+  // `--tune`: after each cell at the given settings, search for the cheapest that passes every
+  // check (tune_cell), for at most `tune_budget` s of wall time per cell and runs of at most
+  // `max_steps` steps.
+  bool tune = false;
+  double tune_budget = 60.0;
+  long max_steps = 10'000'000;
+};
+
+// The cheapest settings `stability --tune` found for one cell.
+struct TunedCell {
+  bool passed = false;
+  // The settings beside the given ones that were run ({} when the given ones pass): given back
+  // through `--set ENGINE.KEY=VALUE` they reproduce the verdict.
+  nlohmann::json settings = nlohmann::json::object();
+  double us_per_sim_s = 0.0;  // µs of stepping per simulated second
+  std::vector<SceneCheckResult> checks;
+  int attempts = 0;       // runs made, the given settings' included
+  bool out_of_budget = false;  // the search stopped at the budget, not at a pass or a dead end
 };
 
 // One scene in one engine.
@@ -55,12 +75,17 @@ struct StabilityCell {
   double us_per_step = 0.0;
   double wall_seconds = 0.0;  // stepping only
   std::vector<double> t, energy, kinetic;  // recorded frames, s and J
+  double us_per_sim_s() const;  // µs of stepping per simulated second
+  std::optional<TunedCell> tuned;  // with --tune
 };
 
 struct StabilityResult {
   std::vector<std::string> engines;
   std::vector<Scene> scenes;
   std::vector<StabilityCell> cells;  // scene by scene, engines in order within each
+  // The scenes were the whole catalogue (fixtures/hard/): only then do the reports speak of "the
+  // hard scenes".
+  bool whole_catalogue = false;
   double wall_seconds = 0.0;         // the whole run
   // How many cells of our engine ("own") failed; whether none did.
   int own_failures() const;
@@ -71,7 +96,24 @@ struct StabilityResult {
 StabilityCell run_stability_cell(const Scene& scene, std::string_view engine, const StabilitySettings& settings,
                                  const std::function<void(double)>& progress = {});
 
-// Runs every scene in every engine (UnknownEngine for a name not available, before any run).
+// How far a failed check missed its limit, as a factor >= 1 (value / limit, or limit / value
+// for an at-least check; infinite for a check that cannot be compared); 0 for a passed one. The
+// worst over a run's checks ranks attempts.
+double miss_factor(const SceneCheckResult& check);
+double worst_miss(const std::vector<SceneCheckResult>& checks);
+
+// The search of `stability --tune` for one scene and engine, from `at_given` (the cell at the
+// given settings): not a grid but a ladder, the time step halved and the engine's solver passes
+// ("iterations", else "contact_passes") doubled together until every check passes, the worst
+// miss stops shrinking for two rungs, the steps pass settings.max_steps or the budget is spent;
+// then, if none passed, the engine's sleeping switch ("auto_disable", "sleeping") on the closest
+// rung. Returns the first passing attempt (the cheapest rung that passes: each rung costs more
+// than the one before) or, when none passed, the closest one.
+TunedCell tune_cell(const Scene& scene, std::string_view engine, const StabilitySettings& settings,
+                    const StabilityCell& at_given, const std::function<void(std::string_view)>& attempt = {});
+
+// Runs every scene in every engine (UnknownEngine for a name not available, before any run);
+// the result's whole_catalogue is left to the caller.
 StabilityResult run_stability(const std::vector<Scene>& scenes, const StabilitySettings& settings);
 
 // The scene files named by `paths`: a file as it is, a directory's *.json files sorted by name.

@@ -1,5 +1,6 @@
 #include "boxpile/validation/stability_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -42,9 +43,27 @@ json measures_json(const RunMeasures& m) {
 std::string plot_stem(const StabilityCell& c) { return c.scene + "_" + c.engine; }
 
 // What our engine did: "passes every scene" or "fails N scene(s)".
-std::string own_verdict(const StabilityResult& r) {
-  const int failed = r.own_failures();
-  return failed == 0 ? "passes every scene" : "fails " + std::to_string(failed) + " scene(s)";
+// "passes every scene (2)", "fails 3 of 24 hard scenes": one engine's verdict over the scenes it
+// ran, which are "the hard scenes" only when they were the whole catalogue.
+std::string engine_verdict(const StabilityResult& r, const std::string& engine) {
+  int failed = 0, ran = 0;
+  for (const StabilityCell& c : r.cells) {
+    if (c.engine != engine) continue;
+    ++ran;
+    failed += c.passed ? 0 : 1;
+  }
+  const std::string scenes = r.whole_catalogue ? "hard scene" : "scene";
+  if (failed == 0) return "passes every " + scenes + " (" + std::to_string(ran) + ")";
+  return "fails " + std::to_string(failed) + " of " + std::to_string(ran) + " " + scenes + (ran == 1 ? "" : "s");
+}
+
+// "our engine (own) passes every scene (2); ode fails 1 of 2 scenes": every engine that ran.
+std::string verdicts(const StabilityResult& r) {
+  std::string text;
+  for (const std::string& e : r.engines) {
+    text += (text.empty() ? "" : "; ") + (e == "own" ? std::string("our engine (own)") : e) + " " + engine_verdict(r, e);
+  }
+  return text;
 }
 
 }  // namespace
@@ -59,13 +78,67 @@ std::string cell_text(const StabilityCell& cell) {
   return s;
 }
 
+namespace {
+
+json checks_json(const std::vector<SceneCheckResult>& checks) {
+  json out = json::array();
+  for (const SceneCheckResult& k : checks) {
+    out.push_back({{"name", k.name}, {"value", number(k.value)}, {"limit", number(k.limit)},
+                   {"relation", k.at_least ? ">=" : "<="}, {"unit", k.unit}, {"passed", k.passed}});
+  }
+  return out;
+}
+
+// "dt=0.00208 iterations=40"; empty when nothing was added to the settings given.
+std::string settings_text(const json& settings) {
+  std::string text;
+  for (const auto& [key, value] : settings.items()) {
+    text += text.empty() ? "" : " ";
+    text += key;
+    text += "=";
+    text += value.is_number_float() ? fmt(value.get<double>(), "%.6g") : value.dump();
+  }
+  return text;
+}
+
+// The cheapest passing setting of our engine on `scene` (its tuned cost), 0 when none passed.
+double own_cost(const StabilityResult& r, const std::string& scene) {
+  for (const StabilityCell& c : r.cells)
+    if (c.scene == scene && c.engine == "own" && c.tuned && c.tuned->passed) return c.tuned->us_per_sim_s;
+  return 0.0;
+}
+
+// One cell's tuned result: "pass with dt=... iterations=40, 812 µs/s (3.1x own)", or the closest
+// attempt and its worst miss.
+std::string tuned_text(const StabilityResult& r, const StabilityCell& c) {
+  const TunedCell& t = *c.tuned;
+  const std::string tried = settings_text(t.settings);
+  std::string text = t.passed ? (tried.empty() ? std::string("passes as run") : "pass with " + tried)
+                              : "none passed; closest " + (tried.empty() ? std::string("as run") : tried);
+  text += ", " + fmt(t.us_per_sim_s, "%.0f") + " µs/s";
+  const double own = own_cost(r, c.scene);
+  if (t.passed && own > 0.0 && c.engine != "own") text += " (" + fmt(t.us_per_sim_s / own, "%.2g") + "x own)";
+  if (!t.passed) {
+    const SceneCheckResult* worst = nullptr;
+    for (const SceneCheckResult& k : t.checks)
+      if (!worst || miss_factor(k) > miss_factor(*worst)) worst = &k;
+    if (worst) text += ": " + describe(*worst) + " (" + fmt(miss_factor(*worst), "%.3g") + " times its limit)";
+    if (t.out_of_budget) text += ", budget spent";
+  }
+  return text + ", " + std::to_string(t.attempts) + " runs";
+}
+
+}  // namespace
+
 json stability_json(const StabilityResult& r) {
   json cells = json::array();
   for (const StabilityCell& c : r.cells) {
-    json checks = json::array();
-    for (const SceneCheckResult& k : c.checks) {
-      checks.push_back({{"name", k.name}, {"value", number(k.value)}, {"limit", number(k.limit)},
-                        {"relation", k.at_least ? ">=" : "<="}, {"unit", k.unit}, {"passed", k.passed}});
+    const json checks = checks_json(c.checks);
+    json tuned = nullptr;
+    if (c.tuned) {
+      tuned = {{"passed", c.tuned->passed}, {"settings", c.tuned->settings},
+               {"us_per_sim_s", number(c.tuned->us_per_sim_s)}, {"checks", checks_json(c.tuned->checks)},
+               {"attempts", c.tuned->attempts}, {"out_of_budget", c.tuned->out_of_budget}};
     }
     cells.push_back({{"scene", c.scene},
                      {"engine", c.engine},
@@ -75,7 +148,9 @@ json stability_json(const StabilityResult& r) {
                      {"measures", measures_json(c.measures)},
                      {"steps", c.steps},
                      {"us_per_step", number(c.us_per_step)},
+                     {"us_per_sim_s", number(c.us_per_sim_s())},
                      {"wall_seconds", number(c.wall_seconds)}});
+    if (c.tuned) cells.back()["tuned"] = tuned;
   }
   json scenes = json::array();
   for (const Scene& s : r.scenes) {
@@ -83,6 +158,7 @@ json stability_json(const StabilityResult& r) {
                       {"dt", s.time.dt}, {"duration", s.time.duration}});
   }
   return {{"engines", r.engines}, {"scenes", scenes}, {"cells", cells}, {"own_passed", r.own_passed()},
+          {"whole_catalogue", r.whole_catalogue},
           {"wall_seconds", r.wall_seconds}};
 }
 
@@ -117,8 +193,12 @@ std::vector<PlotSpec> stability_plots(const StabilityResult& r) {
 std::string stability_markdown(const StabilityResult& r, const std::vector<std::string>& plots,
                                const std::vector<std::string>& notes) {
   std::ostringstream md;
-  md << "# Stability of the hard scenes\n\n";
-  md << "Our engine " << own_verdict(r) << ". Each cell shows the check that decided it: the first failing one, or the one closest to its limit. "
+  if (r.whole_catalogue) {
+    md << "# Stability of the hard scenes\n\n";
+  } else {
+    md << "# Stability of " << r.scenes.size() << " scene" << (r.scenes.size() == 1 ? "" : "s") << "\n\n";
+  }
+  md << "Verdicts: " << verdicts(r) << ". Each cell shows the check that decided it: the first failing one, or the one closest to its limit. "
         "A reference engine's failure is a finding, not an error of boxpile.\n\n";
   md << "| scene | bodies |";
   for (const std::string& e : r.engines) md << ' ' << e << " |";
@@ -132,6 +212,18 @@ std::string stability_markdown(const StabilityResult& r, const std::vector<std::
         if (c.scene == s.name && c.engine == e) md << ' ' << cell_text(c) << " |";
     }
     md << '\n';
+  }
+  if (std::any_of(r.cells.begin(), r.cells.end(), [](const StabilityCell& c) { return c.tuned.has_value(); })) {
+    md << "\n## The cheapest passing settings (--tune)\n\nPer cell: the verdict as run, then the cheapest "
+          "settings found that pass every check (added to those given; `--set` reproduces them), their cost in µs of "
+          "stepping per simulated second and its ratio to our engine's cheapest passing one on the scene; where "
+          "none passed within the budget, the closest attempt and its worst check.\n\n"
+          "| scene | engine | as run | tuned |\n|---|---|---|---|\n";
+    for (const StabilityCell& c : r.cells) {
+      if (!c.tuned) continue;
+      md << "| " << c.scene << " | " << c.engine << " | " << (c.passed ? "pass" : "FAIL") << ", "
+         << fmt(c.us_per_sim_s(), "%.0f") << " µs/s | " << tuned_text(r, c) << " |\n";
+    }
   }
   md << "\n## Failures per engine\n\n| engine | failing scenes | µs per step (mean over the cells) |\n|---|---|---|\n";
   for (const std::string& e : r.engines) {
@@ -179,10 +271,13 @@ std::string stability_markdown(const StabilityResult& r, const std::vector<std::
 std::string stability_summary(const StabilityResult& r) {
   std::ostringstream os;
   for (const StabilityCell& c : r.cells) {
-    if (c.passed) continue;
-    os << (c.engine == "own" ? "FAIL " : "finding ") << c.scene << " in " << c.engine << ": " << cell_text(c) << '\n';
+    if (!c.passed) os << (c.engine == "own" ? "FAIL " : "finding ") << c.scene << " in " << c.engine << ": " << cell_text(c) << '\n';
+    if (c.tuned) {
+      os << "tuned " << c.scene << " in " << c.engine << " (as run: " << (c.passed ? "pass" : "FAIL") << ", "
+         << fmt(c.us_per_sim_s(), "%.0f") << " µs/s): " << tuned_text(r, c) << '\n';
+    }
   }
-  os << "our engine " << own_verdict(r) << '\n';
+  for (const std::string& e : r.engines) os << (e == "own" ? std::string("our engine (own)") : e) << ' ' << engine_verdict(r, e) << '\n';
   return os.str();
 }
 

@@ -119,6 +119,15 @@ SweepGrid load_grid(const std::string& path, const LoadLimits& caps) {
   if (!engines.json().is_object() || engines.json().empty()) engines.fail("must name at least one engine");
   for (const auto& item : engines.json().items()) grid.engines.push_back(read_engine(item.key(), engines.at(item.key())));
 
+  // An engine's own time steps (its "dt" axis) are its cells' steps: the grid's would be a second.
+  if (const auto d = root.find("dt")) {
+    for (const GridEngine& engine : grid.engines) {
+      if (engine.axis(time_step_setting().key)) {
+        d->fail("given beside engine " + json_input::in_quotes(engine.name) +
+                "'s own \"dt\": give the time steps in one place");
+      }
+    }
+  }
   grid.scenes = read_scenes(root.at("scenes"), fs::path(path).parent_path(), caps);
   check_methods(grid, engines);
   if (grid.duration) {
@@ -129,13 +138,21 @@ SweepGrid load_grid(const std::string& path, const LoadLimits& caps) {
 
 std::vector<CellSpec> grid_cells(const SweepGrid& grid) {
   std::vector<CellSpec> cells;
+  const std::string& dt_key = time_step_setting().key;
   for (std::size_t s = 0; s < grid.scenes.size(); ++s) {
     const std::vector<double> steps = grid.dt.empty() ? std::vector<double>{grid.scenes[s].scene.time.dt} : grid.dt;
     for (const GridEngine& engine : grid.engines) {
       std::vector<nlohmann::json> combos;
       nlohmann::json partial = nlohmann::json::object();
       product(engine.axes, 0, partial, combos);
-      for (const nlohmann::json& settings : combos) {
+      for (nlohmann::json& settings : combos) {
+        // An engine's "dt" axis is the cell's time step, not one of its settings.
+        if (const auto dt = settings.find(dt_key); dt != settings.end()) {
+          const double own = dt->get<double>();
+          settings.erase(dt_key);
+          cells.push_back({static_cast<int>(cells.size()), static_cast<int>(s), engine.name, settings, own});
+          continue;
+        }
         for (double dt : steps) {
           cells.push_back({static_cast<int>(cells.size()), static_cast<int>(s), engine.name, settings, dt});
         }

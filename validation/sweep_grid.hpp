@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -25,6 +26,12 @@ struct GridScene {
 struct GridEngine {
   std::string name;
   std::vector<std::pair<std::string, std::vector<nlohmann::json>>> axes;  // sorted by key
+  // The values of the axis `key`; null when the engine sweeps no such setting.
+  const std::vector<nlohmann::json>* axis(std::string_view key) const {
+    for (const auto& [k, values] : axes)
+      if (k == key) return &values;
+    return nullptr;
+  }
 };
 
 struct SweepGrid {
@@ -51,7 +58,8 @@ struct CellSpec {
 };
 
 // Every cell, in the grid's order: scenes, then engines (by name), then settings (the last key
-// varying fastest), then time steps.
+// varying fastest), then time steps. An engine that sweeps its own "dt" (the time step, every
+// engine's setting) takes its cells' time steps from it, and the grid's "dt" is refused beside it.
 std::vector<CellSpec> grid_cells(const SweepGrid& grid);
 
 // A deterministic 1/count of the cells: shard `index` (1-based) holds the cells whose position k

@@ -180,7 +180,13 @@ void BulletEngine::World::add_body(int index) {
   body->setUserPointer(&tags.back());
   body->setUserIndex(index);
   if (!rb.fixed) {
-    body->setActivationState(DISABLE_DEACTIVATION);
+    if (settings.sleeping) {
+      body->setSleepingThresholds(settings.linear_sleeping_threshold, settings.angular_sleeping_threshold);
+    } else {
+      body->setActivationState(DISABLE_DEACTIVATION);
+    }
+    body->setCcdMotionThreshold(settings.ccd_motion_threshold);
+    body->setCcdSweptSphereRadius(settings.ccd_swept_sphere_radius);
     body->setLinearVelocity(to_bt(rb.v));
     body->setAngularVelocity(to_bt(rb.omega));
     int flags = body->getFlags();

@@ -28,6 +28,17 @@ struct BulletSettings {
   // Approach speeds below this bounce with no restitution, m/s (m_restitutionVelocityThreshold;
   // Bullet's default).
   double restitution_threshold = 0.2;
+  // Deactivation (sleeping): a body below both speeds for Bullet's deactivation time (its global
+  // gDeactivationTime, 2 s) sleeps with its island until touched. Off by default here
+  // (DISABLE_DEACTIVATION), as every engine is run awake; the speeds are Bullet's defaults.
+  bool sleeping = false;
+  double linear_sleeping_threshold = 0.8;   // m/s
+  double angular_sleeping_threshold = 1.0;  // rad/s
+  // Continuous collision detection: a body moving farther than the motion threshold in one step
+  // is swept as a sphere of the given radius against the others, and stopped at the first touch
+  // (btCollisionObject::setCcdMotionThreshold, setCcdSweptSphereRadius). 0: off (Bullet's default).
+  double ccd_motion_threshold = 0.0;  // m per step
+  double ccd_swept_sphere_radius = 0.0;  // m
 };
 
 // Bullet's settings, by the names of `--set bullet.KEY=VALUE` and sweep grids.

@@ -94,7 +94,12 @@ void OdeEngine::World::build_world() {
   if (std::isfinite(settings.max_correcting_velocity)) {
     dWorldSetContactMaxCorrectingVel(world, settings.max_correcting_velocity);
   }
-  dWorldSetAutoDisableFlag(world, 0);  // no sleeping
+  // Bodies created after this inherit the world's sleeping rules (dBodyCreate copies them).
+  dWorldSetAutoDisableFlag(world, settings.auto_disable ? 1 : 0);
+  dWorldSetAutoDisableLinearThreshold(world, settings.auto_disable_linear_threshold);
+  dWorldSetAutoDisableAngularThreshold(world, settings.auto_disable_angular_threshold);
+  dWorldSetAutoDisableSteps(world, settings.auto_disable_steps);
+  dWorldSetAutoDisableTime(world, 0);  // the steps alone decide
 
   // A simple space tests every pair of bounding boxes in a fixed order: deterministic, and for
   // the hundred bodies of our largest scene cheaper than building a hash. It is all-pairs, though
@@ -147,7 +152,6 @@ void OdeEngine::World::add_body(int index) {
     dBodySetQuaternion(body, q);
     dBodySetLinearVel(body, rb.v.x(), rb.v.y(), rb.v.z());
     dBodySetAngularVel(body, rb.omega.x(), rb.omega.y(), rb.omega.z());
-    dBodySetAutoDisableFlag(body, 0);
     dBodySetGyroscopicMode(body, scene.effects.gyroscopic ? 1 : 0);
     if (scene.effects.damping) {
       const double dt = scene.time.dt;
@@ -224,7 +228,6 @@ void OdeEngine::World::add_wire(int index) {
   dBodySetPosition(carriage, anchor.x(), anchor.y(), anchor.z());
   const Vec3 v = axis * axis.dot(rb.velocity_at(anchor));
   dBodySetLinearVel(carriage, v.x(), v.y(), v.z());
-  dBodySetAutoDisableFlag(carriage, 0);
 
   dJointID slider = dJointCreateSlider(world, nullptr);
   dJointAttach(slider, carriage, nullptr);

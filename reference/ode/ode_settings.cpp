@@ -15,6 +15,8 @@ namespace {
 constexpr double kLargestSeed = 2147483647;
 // dBoxBox clips to at most 8 points: asking for more changes nothing.
 constexpr double kMostOdeContacts = 8;
+// Steps of calm before sleeping: beyond a million (over an hour at 1/240 s) nothing ever sleeps.
+constexpr double kMostAutoDisableSteps = 1'000'000;
 
 }  // namespace
 
@@ -56,6 +58,22 @@ const SettingsTable<OdeSettings>& ode_settings_table() {
         reference_limits::kMaxLength},
        [](S& s, const json& v) { s.restitution_threshold = v.get<double>(); },
        [](const S& s) { return json(s.restitution_threshold); }},
+      {{"auto_disable", Kind::Boolean, "",
+        "sleeping: an island below both auto_disable speeds for auto_disable_steps steps stops (velocities "
+        "zeroed) until touched"},
+       [](S& s, const json& v) { s.auto_disable = v.get<bool>(); }, [](const S& s) { return json(s.auto_disable); }},
+      {{"auto_disable_linear_threshold", Kind::Number, "m/s", "auto_disable: a body slower than this may sleep", 0,
+        reference_limits::kMaxLength},
+       [](S& s, const json& v) { s.auto_disable_linear_threshold = v.get<double>(); },
+       [](const S& s) { return json(s.auto_disable_linear_threshold); }},
+      {{"auto_disable_angular_threshold", Kind::Number, "rad/s", "auto_disable: a body turning slower than this may sleep",
+        0, reference_limits::kMaxLength},
+       [](S& s, const json& v) { s.auto_disable_angular_threshold = v.get<double>(); },
+       [](const S& s) { return json(s.auto_disable_angular_threshold); }},
+      {{"auto_disable_steps", Kind::Integer, "", "auto_disable: steps below both speeds before an island sleeps", 1,
+        kMostAutoDisableSteps},
+       [](S& s, const json& v) { s.auto_disable_steps = v.get<int>(); },
+       [](const S& s) { return json(s.auto_disable_steps); }},
   };
   return table;
 }

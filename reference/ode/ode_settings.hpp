@@ -40,6 +40,14 @@ struct OdeSettings {
   double wire_carriage_mass_fraction = 0.01;
   // Approach speeds below this bounce with no restitution, m/s (bounce_vel).
   double restitution_threshold = 0.2;
+  // Sleeping (dWorldSetAutoDisableFlag): an island whose bodies all stay below both speeds for
+  // `auto_disable_steps` steps is disabled (its velocities zeroed, its bodies no longer stepped)
+  // until something touches it. Off by default here, as every engine is run awake; the speeds
+  // and steps are ODE's defaults.
+  bool auto_disable = false;
+  double auto_disable_linear_threshold = 0.01;   // m/s
+  double auto_disable_angular_threshold = 0.01;  // rad/s
+  int auto_disable_steps = 10;
 };
 
 // ODE's settings, by the names of `--set ode.KEY=VALUE` and sweep grids.

@@ -1,5 +1,7 @@
 #include "boxpile/sim/io/setting.hpp"
 
+#include "boxpile/sim/limits.hpp"
+
 namespace boxpile {
 
 using json_input::format_number;
@@ -15,7 +17,7 @@ std::string bound_text(const SettingInfo& s, double x) {
 
 // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "[" + a temporary string.
 std::string range_text(const SettingInfo& s) {
-  std::string text("[");
+  std::string text(s.open_min ? "(" : "[");
   text += bound_text(s, s.min);
   text += ", ";
   text += bound_text(s, s.max);
@@ -24,6 +26,14 @@ std::string range_text(const SettingInfo& s) {
 }
 
 }  // namespace
+
+const SettingInfo& time_step_setting() {
+  static const SettingInfo dt{.key = "dt", .kind = Kind::Number, .unit = "s",
+                              .what = "the time step: every engine steps the scene by it",
+                              .min = 0.0, .max = limits::kMaxTimeStep,
+                              .when_unset = "the scene's time.dt", .open_min = true};
+  return dt;
+}
 
 nlohmann::json check_setting_value(const SettingInfo& setting, const JsonNode& value) {
   switch (setting.kind) {
@@ -36,7 +46,7 @@ nlohmann::json check_setting_value(const SettingInfo& setting, const JsonNode& v
     }
     case Kind::Number: {
       const double x = value.number();
-      if (x < setting.min || x > setting.max) {
+      if (!(setting.open_min ? x > setting.min : x >= setting.min) || x > setting.max) {
         value.fail("must be in " + range_text(setting) + (setting.unit.empty() ? "" : " " + setting.unit) +
                    ", got " + format_number(x));
       }

@@ -25,7 +25,7 @@ struct SettingInfo {
   Kind kind = Kind::Number;
   std::string unit = {};  // "" for dimensionless, counts and choices
   std::string what = {};  // one line: what it sets, in the engine's own words
-  // Allowed range of an Integer or Number (inclusive).
+  // Allowed range of an Integer or Number (inclusive; `min` excluded when open_min).
   double min = 0.0, max = 0.0;
   // The names of a Choice.
   std::vector<std::string> choices = {};
@@ -41,13 +41,21 @@ struct SettingInfo {
   // The part of the engine that reads it, when the engine has parts that exclude each other (our
   // contact methods: "impulse" or "penalty"); empty when every configuration reads it.
   std::string group = {};
+  // The range excludes `min`: (min, max] (a time step must be above 0).
+  bool open_min = false;
 };
+
+// The time step, a setting of every engine (key "dt", s, in (0, kMaxTimeStep], the scene's
+// time.dt when not given). The registry (reference/registry.hpp) lists it first among each
+// engine's settings and writes it into the scene the engine is built from, so that the engine,
+// the run loop's step count and the rulers all read the same dt.
+const SettingInfo& time_step_setting();
 
 // The setting's value at `value` checked against its declaration (type, range, choice) and
 // normalised (an integer written 5.0 reads as 5); InputError at `value`'s path otherwise.
 nlohmann::json check_setting_value(const SettingInfo& setting, const json_input::JsonNode& value);
 
-// "integer in [1, 64]", "number in [0, 1]", "true, false", "\"quickstep\", \"world\"".
+// "integer in [1, 64]", "number in [0, 1]", "number in (0, 1]", "true, false", "\"quickstep\", \"world\"".
 std::string setting_values_text(const SettingInfo& setting);
 // The default as a docs table shows it: 0.2, true, "quickstep", or "derived" (null).
 std::string setting_default_text(const SettingInfo& setting);

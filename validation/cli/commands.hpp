@@ -132,6 +132,8 @@ struct StabilityOptions {
   std::vector<std::string> set;      // "ENGINE.KEY=VALUE" (the prefix optional when one engine runs)
   std::string report = "boxpile-stability";
   RunLimits limits;
+  bool tune = false;          // --tune
+  double tune_budget = 60.0;  // --tune-budget, s per cell
 };
 void add_stability_command(CLI::App& app, StabilityOptions& options);
 int run_stability_command(const StabilityOptions& options);

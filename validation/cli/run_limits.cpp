@@ -90,8 +90,20 @@ void apply_time_options(Scene& scene, const std::optional<double>& dt, const std
   throw InputError(scene.source, on_dt ? "time.dt" : "time.duration", problem->what + hint);
 }
 
-void check_run_work(const Scene& scene, std::string_view engine, const nlohmann::json& settings,
+void check_run_work(const Scene& scene_file, std::string_view engine, const nlohmann::json& settings,
                     const RunLimits& limits, bool dt_flag, std::string_view dt_source) {
+  // The engine's own time step (`--set ENGINE.dt`), within the cap of steps as --dt is.
+  const std::string& dt_key = time_step_setting().key;
+  const Scene scene = scene_with_settings(engine, scene_file, settings);
+  if (settings.contains(dt_key)) {
+    const std::string flag = "--set " + std::string(engine) + "." + dt_key;
+    if (dt_flag) throw UsageError(flag + " and " + std::string(dt_source) + " both set the time step of " + std::string(engine) + ": give one");
+    if (const auto problem = check_time_settings(scene.time.dt, scene.time.duration, limits.max_steps)) {
+      throw UsageError(flag + ": " + problem->what + (problem->over_cap ? " (--max-steps raises it)" : ""));
+    }
+    dt_flag = true;
+    dt_source = flag;
+  }
   if (const std::string problem = engine_time_step_problem(engine, scene, settings); !problem.empty()) {
     const std::string what = std::string(engine) + ": " + problem;
     if (dt_flag) throw UsageError(std::string(dt_source) + ": " + what);

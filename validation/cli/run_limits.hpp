@@ -67,7 +67,9 @@ void apply_time_options(Scene& scene, const std::optional<double>& dt, const std
 // engine can run (the penalty method's stability bound) and the steps times the engine's work per
 // step (the penalty method's substeps: `--set substeps=100000` multiplies the work) within
 // --max-steps. `dt_flag` says that the command line set dt (--dt, or a grid's "dt"): the refusal
-// names `dt_source` then, else the scene's time.dt. UsageError or InputError (exit 2).
+// names `dt_source` then, else the scene's time.dt. The engine's own time step (`--set
+// ENGINE.dt`) is held to the step cap as --dt is, and refused beside --dt. UsageError or
+// InputError (exit 2).
 void check_run_work(const Scene& scene, std::string_view engine, const nlohmann::json& settings,
                     const RunLimits& limits, bool dt_flag, std::string_view dt_source = "--dt");
 

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "boxpile/sim/io/scene_loader.hpp"
@@ -29,8 +30,16 @@ std::string clock_text(double seconds) {
 class StabilityPrinter {
  public:
   void operator()(const StabilityProgress& p) {
+    char text[240];
+    if (!p.tuning.empty()) {
+      // Each attempt of --tune on its own line: they are few, and each says what it tries.
+      std::snprintf(text, sizeof text, "  [%d/%d] %-22s %-7s tuning: %s  elapsed %s, at most about %s left",
+                    p.index + 1, p.total, std::string(p.scene).c_str(), std::string(p.engine).c_str(),
+                    std::string(p.tuning).c_str(), clock_text(p.elapsed).c_str(), clock_text(p.remaining).c_str());
+      line_.draw(text, true);
+      return;
+    }
     if (!line_.due(p.index, p.fraction)) return;
-    char text[200];
     std::snprintf(text, sizeof text, "  [%d/%d] %-22s %-7s %3d%%  elapsed %s, about %s left", p.index + 1, p.total,
                   std::string(p.scene).c_str(), std::string(p.engine).c_str(), static_cast<int>(100.0 * p.fraction),
                   clock_text(p.elapsed).c_str(), clock_text(p.remaining).c_str());
@@ -40,6 +49,17 @@ class StabilityPrinter {
  private:
   StatusLine line_;
 };
+
+// The same scene files, however the paths were written (fixtures/hard/ and its files one by one).
+bool same_files(std::vector<std::string> a, std::vector<std::string> b) {
+  auto canonical = [](std::vector<std::string>& files) {
+    for (std::string& f : files) f = std::filesystem::weakly_canonical(f).string();
+    std::sort(files.begin(), files.end());
+  };
+  canonical(a);
+  canonical(b);
+  return a == b;
+}
 
 }  // namespace
 
@@ -51,6 +71,12 @@ void add_stability_command(CLI::App& app, StabilityOptions& options) {
   cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() + " (default: " + engine_list(default_engines(&DefaultLists::stability)) + ")")->delimiter(',');
   add_set_option(*cmd, options.set);
   cmd->add_option("--scenes", options.scenes, "Scene files or directories of them (default: fixtures/hard/)");
+  cmd->add_flag("--tune", options.tune,
+                "After each cell, search for the cheapest settings that pass every check (dt halved and solver passes "
+                "doubled, then the engine's sleeping switch); stability.json's \"tuned\" and the matrix show them");
+  cmd->add_option("--tune-budget", options.tune_budget, "With --tune: seconds of wall time per cell, at most")
+      ->check(CLI::Range(0.0, 86400.0))
+      ->capture_default_str();
   add_report_option(*cmd, options.report, "stability");
   add_limit_options(*cmd, options.limits, false);
 }
@@ -61,9 +87,13 @@ int run_stability_command(const StabilityOptions& options) {
   if (!options.engines.empty()) settings.engines = options.engines;
   check_engines(settings.engines, "--engines");
   settings.engine_settings = parse_set_options(options.set, settings.engines);
+  settings.tune = options.tune;
+  settings.tune_budget = options.tune_budget;
+  settings.max_steps = options.limits.max_steps;
   std::vector<Scene> scenes;
-  for (const std::string& file : catalogue_files(options.scenes.empty() ? std::vector<std::string>{data_path("fixtures/hard").string()}
-                                                                        : options.scenes)) {
+  const std::vector<std::string> catalogue = catalogue_files({data_path("fixtures/hard").string()});
+  const std::vector<std::string> files = options.scenes.empty() ? catalogue : catalogue_files(options.scenes);
+  for (const std::string& file : files) {
     const Activity loading("loading " + file);
     scenes.push_back(load_scene(file, options.limits.load()));
     // The caps of run and compare: a scene of 2.4e14 steps is refused, not run until killed.
@@ -83,7 +113,13 @@ int run_stability_command(const StabilityOptions& options) {
   std::cerr << "boxpile stability: " << scenes.size() << " scenes in " << settings.engines.size() << " engines\n";
   const Activity running("running the stability catalogue");
   const std::optional<StabilityResult> result = run_and_report(
-      dir, [&] { return run_stability(scenes, settings); }, write_stability_report, stability_summary,
+      dir,
+      [&] {
+        StabilityResult r = run_stability(scenes, settings);
+        r.whole_catalogue = same_files(files, catalogue);
+        return r;
+      },
+      write_stability_report, stability_summary,
       kStabilityMarkdown);
   if (!result) return kExitInterrupted;
   return result->own_passed() ? kExitOk : kExitFailure;
