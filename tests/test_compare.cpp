@@ -8,14 +8,18 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/plots.hpp"
+#include "boxpile/validation/replay_data.hpp"
 #include "boxpile/validation/report.hpp"
 #include "boxpile/validation/report_directory.hpp"
 #include "boxpile/validation/stacks.hpp"
@@ -268,4 +272,42 @@ TEST_CASE("bad input to boxpile compare exits with 2 and writes no report", "[co
   CHECK(run_boxpile("compare " + scene + " --dt -1 --report " + report) == 2);
   // Nothing but the file made above: no report, no staging directory.
   CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);
+}
+
+TEST_CASE("an engine has one colour in a 2-engine and a 4-engine compare's plots and replay data", "[compare]") {
+  Scene scene = fixture("stack_5");
+  scene.time.duration = 0.05;
+  // The colour of every series titled `engine` in the plots, and of its replay data.
+  const auto colours_of = [&scene](const CompareResult& r, const std::string& engine) {
+    std::set<std::string> colours;
+    for (const PlotSpec& p : report_plots(r))
+      for (const PlotSeries& s : p.series)
+        if (s.title == engine) colours.insert(s.colour);
+    std::vector<const Recording*> runs;
+    for (const EngineRun& run : r.runs) runs.push_back(&run.recording);
+    for (const json& e : replay_data(scene.name, runs, {}).at("engines"))
+      if (e.at("name") == engine) colours.insert(e.at("colour").get<std::string>());
+    return colours;
+  };
+  CompareSettings two, four;
+  two.engines = {"own", "ode"};
+  four.engines = {"bullet", "mujoco", "own-impulse", "ode"};
+  const CompareResult a = run_compare(scene, two), b = run_compare(scene, four);
+  const std::set<std::string> expected = {engine_colour("ode")};
+  CHECK(colours_of(a, "ode") == expected);
+  CHECK(colours_of(b, "ode") == expected);
+  // Four engines, four colours, none of them a pair's line.
+  std::set<std::string> all;
+  for (const std::string& e : four.engines) {
+    const std::set<std::string> c = colours_of(b, e);
+    REQUIRE(c.size() == 1);
+    all.insert(*c.begin());
+  }
+  CHECK(all.size() == 4);
+  for (const PlotSpec& p : report_plots(b))
+    for (const PlotSeries& s : p.series)
+      if (s.title.find(" vs ") != std::string::npos) CHECK(all.count(s.colour) == 0);
+  // A name without a row gets the same colour each time it is asked.
+  CHECK(engine_colour("someone-elses") == engine_colour("someone-elses"));
+  CHECK(engine_colour("someone-elses").size() == 7);
 }

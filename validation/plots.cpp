@@ -19,9 +19,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Colours a reader can tell apart (Okabe and Ito's colour-blind safe palette).
-constexpr std::array<const char*, 8> kPalette = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
-                                                 "#E69F00", "#56B4E9", "#F0E442", "#000000"};
+// Colours of series that are no engine's: darker or duller than the engines' (registry.cpp), so
+// that a pair's line is not taken for an engine's.
+constexpr std::array<const char*, 6> kPalette = {"#332288", "#117733", "#88CCEE", "#AA4499",
+                                                 "#661100", "#6699CC"};
 
 // gnuplot strings in single quotes take everything literally except the quote itself, doubled.
 std::string quoted(const std::string& s) {
@@ -49,7 +50,7 @@ void write_text(const fs::path& path, const std::string& text) {
 bool has_points(const PlotSeries& s) { return !s.x.empty() && !s.y.empty(); }
 
 std::string style_of(const PlotSeries& s) {
-  const std::string color = kPalette[static_cast<std::size_t>(s.color) % kPalette.size()];
+  const std::string& color = s.colour;
   switch (s.style) {
     case PlotSeries::Style::Dashed:
       return "with lines lw 1.2 dt 2 lc rgb '" + color + "'";
@@ -66,6 +67,8 @@ std::string style_of(const PlotSeries& s) {
 }
 
 }  // namespace
+
+std::string plot_colour(int k) { return kPalette[static_cast<std::size_t>(k < 0 ? -k : k) % kPalette.size()]; }
 
 void write_plot_files(const fs::path& dir, const PlotSpec& spec) {
   // The data: one block per series (gnuplot's "index"), blocks separated by two blank lines.

@@ -11,12 +11,18 @@
 
 namespace boxpile {
 
+// The k-th colour (cyclic) for series that are not one engine's: a pair of engines, a solver's
+// loop. An engine's series take engine_colour(name) (reference/registry.hpp) instead.
+std::string plot_colour(int k);
+
 struct PlotSeries {
   enum class Style { Line, Dashed, Points, Crosses, LinePoints };
   std::string title;
   std::vector<double> x, y;
   Style style = Style::Line;
-  int color = 0;  // index into the plot palette; series of one engine share a colour
+  // "#rrggbb": engine_colour() for an engine's series (series of one engine share it),
+  // plot_colour() for others.
+  std::string colour = plot_colour(0);
 };
 
 struct PlotSpec {

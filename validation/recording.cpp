@@ -3,6 +3,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/validation/json_output.hpp"
 
@@ -217,7 +218,7 @@ json recording_json(const Recording& r, const std::vector<json>& extra) {
     if (f < extra.size()) frame.update(extra[f]);
     frames.push_back(std::move(frame));
   }
-  json doc = {{"scene", r.scene}, {"engine", r.engine}, {"dt", r.dt}, {"shapes", shapes_json(r.shapes)},
+  json doc = {{"scene", r.scene}, {"engine", r.engine}, {"colour", engine_colour(r.engine)}, {"dt", r.dt}, {"shapes", shapes_json(r.shapes)},
               {"frames", std::move(frames)}};
   if (r.stopped) {
     doc["stopped"] = {{"step", r.stopped->step}, {"t", r.stopped->t}, {"body", r.stopped->body},

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/detectors.hpp"
 #include "boxpile/validation/format_number.hpp"
 #include "boxpile/validation/json_output.hpp"
@@ -350,7 +351,7 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
 
   for (std::size_t e = 0; e < r.runs.size(); ++e) {
     const EngineRun& run = r.runs[e];
-    const int color = static_cast<int>(e);
+    const std::string color = engine_colour(run.engine);
     energy.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.energy, Style::Line, color});
     PlotSeries impacts{run.engine + " impacts", {}, {}, Style::Points, color};
     for (const ImpactEvent& ev : run.events) {
@@ -363,12 +364,11 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
   }
   for (std::size_t p = 0; p < r.pairs.size(); ++p) {
     const RunDifference& d = r.pairs[p].difference;
-    difference.series.push_back({d.a + " vs " + d.b, d.t, d.max_position, Style::Line,
-                                 static_cast<int>(r.runs.size() + p)});
+    difference.series.push_back({d.a + " vs " + d.b, d.t, d.max_position, Style::Line, plot_colour(static_cast<int>(p))});
   }
   for (std::size_t e = 0; e < r.baselines.size(); ++e) {
     const RunDifference& d = r.baselines[e].divergence;
-    difference.series.push_back({d.b, d.t, d.max_position, Style::Dashed, static_cast<int>(e)});
+    difference.series.push_back({d.b, d.t, d.max_position, Style::Dashed, engine_colour(r.runs[e].engine)});
   }
   plots.push_back(std::move(energy));
   plots.push_back(std::move(penetration));

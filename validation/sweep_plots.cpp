@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/plots.hpp"
 #include "boxpile/validation/sweep_report.hpp"
 
@@ -13,8 +14,8 @@ namespace {
 namespace fs = std::filesystem;
 using Style = PlotSeries::Style;
 
-// The overall front is drawn in the palette's black.
-constexpr int kOverallColor = 7;
+// The overall front is drawn in black (no engine's colour).
+constexpr const char* kOverallColour = "#000000";
 // Error values of exactly 0 are drawn at this on the logarithmic axes.
 constexpr double kLogFloor = 1e-14;
 
@@ -44,10 +45,6 @@ PlotSpec log_plot(std::string name, std::string title, std::string xlabel, std::
   return spec;
 }
 
-int color_of(const std::vector<std::string>& engines, const std::string& engine) {
-  return static_cast<int>(std::find(engines.begin(), engines.end(), engine) - engines.begin());
-}
-
 PlotSpec front_plot(const SweepReport& r, const std::string& scene, const std::string& stem, const ErrorMeasure& m,
                     const std::vector<std::string>& engines) {
   const std::string measure(m.name);
@@ -55,7 +52,7 @@ PlotSpec front_plot(const SweepReport& r, const std::string& scene, const std::s
                            "µs per simulated second", measure + " (" + std::string(m.unit) + ")", true);
   const SceneFronts fronts = fronts_of(r, scene, measure);
   for (const std::string& e : engines) {
-    const int color = color_of(engines, e);
+    const std::string color = engine_colour(e);
     PlotSeries passing{e, {}, {}, Style::Points, color}, failing{e + " (fails a check)", {}, {}, Style::Crosses, color};
     for (const CellResult& c : r.cells) {
       if (c.scene != scene || c.spec.engine != e || !c.measures.stable) continue;
@@ -76,7 +73,7 @@ PlotSpec front_plot(const SweepReport& r, const std::string& scene, const std::s
     spec.series.push_back(std::move(failing));
     spec.series.push_back(std::move(front));
   }
-  PlotSeries overall{"front over all engines", {}, {}, Style::Line, kOverallColor};
+  PlotSeries overall{"front over all engines", {}, {}, Style::Line, kOverallColour};
   for (std::size_t i : fronts.overall) {
     overall.x.push_back(r.cells[i].us_per_simulated_second);
     overall.y.push_back(error_of(r.cells[i], measure));
@@ -103,7 +100,7 @@ PlotSpec convergence_plot(const CellResult& c, const std::string& stem) {
                            fs::path(c.scene).filename().string() + ": residual after each pass (mean over the run)",
                            "pass", "largest approaching normal velocity (m/s)", false);
   auto series = [](const std::string& title, const std::vector<double>& y, int color) {
-    PlotSeries s{title, {}, y, Style::LinePoints, color};
+    PlotSeries s{title, {}, y, Style::LinePoints, plot_colour(color)};
     for (std::size_t k = 0; k < y.size(); ++k) s.x.push_back(static_cast<double>(k + 1));
     return s;
   };
@@ -117,8 +114,7 @@ PlotSpec convergence_plot(const CellResult& c, const std::string& stem) {
 
 // ODE's and Bullet's error against "iterations": one line per engine and combination of its other
 // settings and dt. Empty when no engine sweeps its iterations.
-PlotSpec iterations_plot(const SweepReport& r, const std::string& scene, const std::string& stem, const ErrorMeasure& m,
-                         const std::vector<std::string>& engines) {
+PlotSpec iterations_plot(const SweepReport& r, const std::string& scene, const std::string& stem, const ErrorMeasure& m) {
   const std::string measure(m.name);
   PlotSpec spec = log_plot("iterations_" + stem + "_" + measure, scene + ": " + measure + " against solver iterations",
                            "iterations", measure + " (" + std::string(m.unit) + ")", true);
@@ -133,7 +129,7 @@ PlotSpec iterations_plot(const SweepReport& r, const std::string& scene, const s
     const std::string title = c.spec.engine + (others.empty() ? "" : " " + settings_label(others)) + " dt=" +
                               std::to_string(c.spec.dt).substr(0, 8);
     if (!lines.count(title)) {
-      lines[title] = PlotSeries{title, {}, {}, Style::LinePoints, color_of(engines, c.spec.engine)};
+      lines[title] = PlotSeries{title, {}, {}, Style::LinePoints, engine_colour(c.spec.engine)};
       order.push_back(title);
     }
     lines[title].x.push_back(c.spec.settings.at("iterations").get<double>());
@@ -165,7 +161,7 @@ std::vector<std::string> write_sweep_plots(const SweepReport& r, const fs::path&
       if (std::any_of(front.series.begin(), front.series.end(), [](const PlotSeries& p) { return !p.x.empty(); })) {
         specs.push_back(std::move(front));
       }
-      PlotSpec iterations = iterations_plot(r, scenes[s], stem, m, engines);
+      PlotSpec iterations = iterations_plot(r, scenes[s], stem, m);
       if (!iterations.series.empty()) specs.push_back(std::move(iterations));
     }
     if (const CellResult* c = convergence_cell(r, scenes[s])) specs.push_back(convergence_plot(*c, stem));
