@@ -156,7 +156,7 @@ std::vector<EngineRow> built_in_rows() {
       {{"bullet", "Bullet's btBoxBoxDetector through a persistent manifold", false,
         [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return bullet_box_box(a, b); },
         [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return bullet_box_plane(a, p); }},
-       {"bullet_multipoint", "Bullet with setPlaneConvexMultipointIterations(3, 3)", true,
+       {"bullet-multipoint", "Bullet with setPlaneConvexMultipointIterations(3, 3)", true,
         [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return bullet_box_box(a, b); },
         [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) {
           return bullet_box_plane(a, p, kBulletMultipoint);

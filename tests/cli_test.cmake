@@ -121,3 +121,39 @@ string(JSON engine GET "${penalty_run}" engine)
 if(NOT method STREQUAL "penalty" OR NOT engine STREQUAL "own-penalty")
   message(SEND_ERROR "own-penalty: method ${method}, engine ${engine}")
 endif()
+
+# --- the command line as a new user types it ---
+# A list option takes one word: the file after it stays the scene or the query.
+run(engines_then_scene 0 "report.md" compare --engines own,ode "${FIXTURES}/scenes/stack_5.json" --duration 0.02
+    --report "${WORK}/engines_then_scene")
+run(engines_then_query 0 "" contacts --engines own,ode "${FIXTURES}/contacts/aligned_offset.json" --format json)
+string(JSON n LENGTH "${last_out}" engines ode contacts)
+if(NOT n EQUAL 4)
+  message(SEND_ERROR "contacts --engines own,ode QUERY: ${n} ode contacts, expected 4\n${last_out}")
+endif()
+# --out names every command's output; --report is the same on the commands that write a report.
+run(compare_out 0 "${WORK}/compare_out/report.md" compare "${FIXTURES}/scenes/stack_5.json" --engines own --duration 0.02
+    --out "${WORK}/compare_out")
+# Names use hyphens; the old underscore spelling is refused with the new name.
+run(old_detector_name 2 "did you mean \"bullet-multipoint\"" contacts --engines bullet_multipoint
+    "${FIXTURES}/contacts/plane_flat.json")
+run(new_detector_name 0 "" contacts --engines bullet-multipoint "${FIXTURES}/contacts/plane_flat.json" --format json)
+# Each command's help gives its own exit codes, not the top level's text.
+foreach(pair "conform;0 the collider is within every gate" "stability;1 our engine failed a check"
+             "run;1 a state became non-finite" "sweep;are findings in it")
+  list(GET pair 0 command)
+  list(GET pair 1 text)
+  run(help_${command} 0 "${text}" ${command} --help)
+  string(FIND "${last_out}" "Without a command" at)
+  if(NOT at EQUAL -1)
+    message(SEND_ERROR "${command} --help repeats the top level's text\n${last_out}")
+  endif()
+endforeach()
+run(help_top 0 "Without a command" --help)
+# run --out says what it wrote where.
+run(run_out_says 0 "run: ${WORK}/said.json" run "${FIXTURES}/scenes/stack_5.json" --engine own --duration 0.02
+    --out "${WORK}/said.json")
+string(FIND "${last_out}" "2 frames recorded" at)
+if(at EQUAL -1)
+  message(SEND_ERROR "run --out: the frames recorded are not said\n${last_out}")
+endif()

@@ -78,7 +78,7 @@ TEST_CASE("The registry's lists are its rows'", "[registry]") {
   CHECK(StabilitySettings{}.engines == default_engines(&DefaultLists::stability));
   Names detector_names;
   for (const DetectorInfo& d : detectors()) detector_names.push_back(d.name);
-  CHECK(detector_names == Names{"own", "ode", "bullet", "bullet_multipoint", "mujoco", "dart", "fcl"});
+  CHECK(detector_names == Names{"own", "ode", "bullet", "bullet-multipoint", "mujoco", "dart", "fcl"});
   // Every row has a title, and every available row a factory that builds it under its name
   // (own-impulse and own-penalty are World under their row's name).
   const Scene scene = fixture("stack_5");

@@ -49,6 +49,33 @@ int parse_error(const CLI::App& app, const CLI::ParseError& e) {
   return boxpile::cli::kExitBadInput;
 }
 
+// Each command's own exit codes, shown by its --help (the top level's help gives the general rule).
+struct CommandExits {
+  const char* command;
+  const char* exits;
+};
+constexpr CommandExits kCommandExits[] = {
+    {"contacts", "0 the contact sets were printed (under --serve: the input ended); 2 bad input (the query, a "
+                 "flag, a detector name)"},
+    {"run", "0 the run ended (and --out was written); 1 a state became non-finite (nothing written) or anything "
+            "unexpected; 2 bad input (scene, flag, output location, a scene outside what an engine can take)"},
+    {"compare", "0 every engine ran to the end and the report was written; 1 an engine failed (the report says "
+                "where and why) or anything unexpected; 2 bad input (scene, flag, engine name, report directory)"},
+    {"sweep", "0 the report was written (cells that failed a check or went unstable are findings in it); 1 "
+              "anything unexpected; 2 bad input (the grid, a flag, the report directory)"},
+    {"sweep-merge", "0 the merged report was written; 2 bad input (a shard report that is missing, broken or of "
+                    "another grid; the report directory)"},
+    {"settings", "0 the tables were printed"},
+    {"stability", "0 our engine passed every check of every scene (other engines' failures are findings); 1 our "
+                  "engine failed a check, or anything unexpected; 2 bad input (a scene, a flag, an engine name, the "
+                  "report directory)"},
+    {"conform", "0 the collider is within every gate; 1 it is not (conform.md says where); 2 bad input (a flag, "
+                "the cases, the report directory) or a collider that dies, hangs or answers what the protocol "
+                "does not allow"},
+    {"view", "0 the page was written; 2 bad input (a run file or report directory that is missing or broken, "
+             "the output location)"},
+};
+
 }  // namespace
 
 namespace boxpile::cli {
@@ -81,6 +108,9 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
   add_conform_command(app, conform);
   ViewOptions view;
   add_view_command(app, view);
+  for (const CommandExits& c : kCommandExits) {
+    app.get_subcommand(c.command)->footer(std::string("Exit codes: ") + c.exits + "; 130 interrupted (nothing written).");
+  }
   // The commands that run engines take engines over the protocol too.
   EngineCommandOptions engine_commands;
   for (const char* name : {"run", "compare", "stability", "sweep"}) {

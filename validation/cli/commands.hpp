@@ -41,7 +41,7 @@ void add_contacts_command(CLI::App& app, ContactsOptions& options);
 int run_contacts(const ContactsOptions& options);
 
 // `boxpile conform --collider CMD [--samples N] [--seed S] [--cases DIR] [--regimes LIST]
-// [--timeout S] [--tolerance float32|float64|VALUE] [--keep N] [--progress] --report DIR`: judges
+// [--timeout S] [--tolerance float32|float64|VALUE] [--keep N] [--progress] [--out DIR]`: judges
 // an outside collider through the line protocol (docs/conform.md). Exit 0 within the gates, 1 not,
 // 2 on bad input or a collider that dies, hangs or answers garbage.
 struct ConformOptions {
@@ -55,7 +55,7 @@ struct ConformOptions {
   std::string tolerance = "float64"; // float32, float64 or a relative tolerance
   int keep = 0;                      // failures saved per kind; add_conform_command sets kDefaultKeep
   bool progress = false;             // progress on stderr even when it is no terminal
-  std::string report;
+  std::string report = "boxpile-conform";
   std::size_t max_input_bytes = limits::kDefaultMaxInputBytes;
 };
 void add_conform_command(CLI::App& app, ConformOptions& options);

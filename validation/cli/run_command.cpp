@@ -228,7 +228,11 @@ int run_run(const RunOptions& options) {
     doc["final"] = {{"t", loop.final_t}, {"bodies", bodies_json(states)}};
     doc["events"] = std::move(events);
     if (options.profile) doc["profile"] = profile_json(engine->solver_counters()->profile, loop.steps);
+    const std::size_t frames = recorder.recording().frames.t.size();
     write_json_file(doc, *out);
+    std::cout << "boxpile run: " << options.engine << " on " << scene.name << ", " << loop.steps << " steps, "
+              << frames << " frames recorded\nrun: " << std::filesystem::absolute(out->target()).lexically_normal().string()
+              << '\n';
   } else {
     std::vector<BodyContact> contacts;
     engine->contacts(contacts);

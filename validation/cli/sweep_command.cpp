@@ -107,7 +107,7 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
   CLI::App* merge = app.add_subcommand("sweep-merge", "Merge the reports of a sweep's shards into one report");
   merge->add_option("reports", options.merge_inputs, "Shard report directories (each holding sweep.json)")
       ->required();
-  merge->add_option("--report", options.report, "Merged report directory")->capture_default_str();
+  merge->add_option("--out,--report", options.report, "Merged report directory (--report is the same)")->capture_default_str();
   add_input_limit_option(*merge, options.limits.max_input_bytes);
 }
 
