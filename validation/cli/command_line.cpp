@@ -14,6 +14,7 @@
 #include "boxpile/validation/cli/activity.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/engine_command_options.hpp"
+#include "boxpile/validation/cli/terminal_output.hpp"
 #include "boxpile/validation/collider_process.hpp"
 #include "boxpile/validation/detectors.hpp"
 #include "boxpile/validation/output_safety.hpp"
@@ -72,6 +73,8 @@ constexpr CommandExits kCommandExits[] = {
     {"conform", "0 the collider is within every gate; 1 it is not (conform.md says where); 2 bad input (a flag, "
                 "the cases, the report directory) or a collider that dies, hangs or answers what the protocol "
                 "does not allow"},
+    {"scene", "0 the scene was written; 2 bad input (a kind, a size out of range or not the kind's, the output "
+              "location)"},
     {"view", "0 the page was written; 2 bad input (a run file or report directory that is missing or broken, "
              "the output location)"},
 };
@@ -84,6 +87,8 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
   // Before anything else: Ctrl-C while the arguments are parsed or a scene is loaded exits 130
   // like one during a run.
   if (mode == CommandLineMode::Run) install_signal_handlers();
+  // Everything printed for people from here on is escaped (terminal_output.hpp).
+  const TerminalEscaping escaping;
   // The node-hosted engines join the registry before any help text or engine list is made.
   boxpile::add_node_engines();
   CLI::App app{"boxpile: a pile of boxes in our own simulator, checked against ODE and Bullet"};
@@ -108,6 +113,8 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
   add_conform_command(app, conform);
   ViewOptions view;
   add_view_command(app, view);
+  SceneOptions scene;
+  add_scene_command(app, scene);
   for (const CommandExits& c : kCommandExits) {
     app.get_subcommand(c.command)->footer(std::string("Exit codes: ") + c.exits + "; 130 interrupted (nothing written).");
   }
@@ -155,6 +162,7 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
     if (app.got_subcommand("stability")) return run_stability_command(stability);
     if (app.got_subcommand("conform")) return run_conform_command(conform);
     if (app.got_subcommand("view")) return run_view(view);
+    if (app.got_subcommand("scene")) return run_scene_command(scene);
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "boxpile/validation/cli/run_limits.hpp"
+#include "boxpile/validation/scene_generator.hpp"
 
 namespace boxpile::cli {
 
@@ -135,5 +136,18 @@ struct StabilityOptions {
 };
 void add_stability_command(CLI::App& app, StabilityOptions& options);
 int run_stability_command(const StabilityOptions& options);
+
+// `boxpile scene KIND [--base N] [--width N] [--height N] [--nx N] [--ny N] [--layers N] [--count N]
+// [--gap M] [--seed S] [--size M] [--mass KG] [--out FILE]`: a scene file of a pyramid, wall,
+// tower, grid, heap or dominoes (validation/scene_generator.hpp), checked by the loader, on stdout
+// or into FILE.
+struct SceneOptions {
+  std::string kind;
+  SceneSizes sizes;
+  std::optional<std::string> out;  // absent: stdout
+  const CLI::App* command = nullptr;  // to tell which size flags were given
+};
+void add_scene_command(CLI::App& app, SceneOptions& options);
+int run_scene_command(const SceneOptions& options);
 
 }  // namespace boxpile::cli
