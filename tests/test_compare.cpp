@@ -5,6 +5,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -293,6 +294,12 @@ TEST_CASE("an engine has one colour in a 2-engine and a 4-engine compare's plots
   two.engines = {"own", "ode"};
   four.engines = {"bullet", "mujoco", "own-impulse", "ode"};
   const CompareResult a = run_compare(scene, two), b = run_compare(scene, four);
+  // The start frame holds the first step's contact set (the stack rests on its contacts), so a
+  // replay opens on them.
+  for (const EngineRun& run : b.runs) {
+    INFO(run.engine);
+    CHECK(run.recording.frames.contacts.at(0).size() >= 4);
+  }
   const std::set<std::string> expected = {engine_colour("ode")};
   CHECK(colours_of(a, "ode") == expected);
   CHECK(colours_of(b, "ode") == expected);
@@ -310,4 +317,40 @@ TEST_CASE("an engine has one colour in a 2-engine and a 4-engine compare's plots
   // A name without a row gets the same colour each time it is asked.
   CHECK(engine_colour("someone-elses") == engine_colour("someone-elses"));
   CHECK(engine_colour("someone-elses").size() == 7);
+}
+
+TEST_CASE("compare's penetration plot holds each interval's deepest, its energy plot the parts", "[compare]") {
+  // The bounce: a box dropped on the ground, its deepest penetration at an impact between frames.
+  Scene scene = fixture("bounce");
+  scene.time.duration = std::min(scene.time.duration, 1.0);
+  CompareSettings settings;
+  settings.engines = {"own", "ode"};
+  const CompareResult r = run_compare(scene, settings);
+  const std::vector<PlotSpec> plots = report_plots(r);
+  const PlotSpec& energy = plots.at(0);
+  const PlotSpec& penetration = plots.at(1);
+  REQUIRE(penetration.name == "penetration");
+  for (const EngineRun& run : r.runs) {
+    INFO(run.engine);
+    const FrameSeries& f = run.recording.frames;
+    REQUIRE(run.interval_penetration.size() == f.t.size());
+    // The largest of the intervals is the deepest of every step, which the table reports.
+    CHECK(*std::max_element(run.interval_penetration.begin(), run.interval_penetration.end()) == run.deepest.depth);
+    for (std::size_t k = 0; k < f.t.size(); ++k) CHECK(run.interval_penetration[k] >= f.penetration[k] - 1e-12);
+    const auto series = [&](const PlotSpec& p, const std::string& title) -> const PlotSeries& {
+      for (const PlotSeries& s : p.series)
+        if (s.title == title) return s;
+      FAIL("no series " << title << " in " << p.name);
+      return p.series.front();
+    };
+    CHECK(series(penetration, run.engine).y == run.interval_penetration);
+    const PlotSeries& total = series(energy, run.engine);
+    const PlotSeries& translational = series(energy, run.engine + " translational");
+    const PlotSeries& rotational = series(energy, run.engine + " rotational");
+    const PlotSeries& potential = series(energy, run.engine + " potential");
+    REQUIRE(translational.y.size() == total.y.size());
+    for (std::size_t k = 0; k < total.y.size(); ++k) {
+      CHECK(translational.y[k] + rotational.y[k] + potential.y[k] == Approx(total.y[k]).margin(1e-9));
+    }
+  }
 }

@@ -14,6 +14,7 @@
 
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/limits.hpp"
 #include "boxpile/sim/world.hpp"
 #include "boxpile/tests/support/work_dir.hpp"
 #include "boxpile/validation/compare.hpp"
@@ -328,4 +329,26 @@ TEST_CASE("docs/scene-format.md's solver and collision keys are the settings tab
     if (s.kind == SettingInfo::Kind::Choice)
       for (const std::string& c : s.choices) CHECK_THAT(cells[4], Contains("\"" + c + "\""));
   }
+}
+
+// The half extents' range in docs/scene-format.md is the loader's (sim/limits.hpp), and the
+// integrator's default is said alike on every page that names it.
+TEST_CASE("docs state the loader's half-extent range and the integrator's default", "[registry]") {
+  const std::string docs = std::string(BOXPILE_FIXTURES_DIR) + "/../docs/";
+  const std::string format = read(docs + "scene-format.md");
+  // The doc writes the loader's numbers as 5e-4 and 1e3.
+  CHECK(limits::kMinHalfExtent == 5e-4);
+  CHECK(limits::kMaxHalfExtent == 1e3);
+  const std::string range = "each 5e-4 to 1e3";
+  std::size_t rows = 0;
+  for (std::size_t at = format.find("| `half_extents` |"); at != std::string::npos;
+       at = format.find("| `half_extents` |", at + 1)) {
+    ++rows;
+    const std::string row = format.substr(at, format.find('\n', at) - at);
+    CHECK_THAT(row, Contains(range));
+  }
+  CHECK(rows == 2);
+  CHECK(SolverSettings{}.integrator == PositionIntegrator::SemiImplicitEuler);
+  CHECK_THAT(format, Contains("| `integrator` | string | `\"semi_implicit_euler\"` |"));
+  CHECK_THAT(read(docs + "reference-engines.md"), Contains("`solver.integrator` (semi-implicit Euler by default"));
 }

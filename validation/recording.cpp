@@ -211,6 +211,12 @@ void Recorder::frame(const StepView& view) {
   s.levitation.push_back(last_.levitation);
 }
 
+void Recorder::first_step(const StepView& view) {
+  FrameSeries& s = recording_.frames;
+  if (view.step != 1 || detail_ == RecordDetail::StatesOnly || s.contacts.empty() || !s.contacts[0].empty()) return;
+  view.engine.contacts(s.contacts[0]);
+}
+
 json recording_json(const Recording& r, const std::vector<json>& extra) {
   json frames = json::array();
   for (std::size_t f = 0; f < r.frames.t.size(); ++f) {

@@ -332,10 +332,14 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
   using Style = PlotSeries::Style;
   std::vector<PlotSpec> plots;
 
-  PlotSpec energy{"energy", "Total energy (kinetic + potential), impacts marked", "t (s)", "energy (J)", false, 1e-12,
-                  std::nullopt, "", {}};
-  PlotSpec penetration{"penetration", "Deepest penetration between any two bodies or a body and the ground", "t (s)",
-                       "depth (m)", false, 1e-12, std::nullopt, "", {}};
+  PlotSpec energy{"energy",
+                  "Energy: total (solid, impacts marked), translational (dashed), rotational (dotted), potential "
+                  "(dash-dot)",
+                  "t (s)", "energy (J)", false, 1e-12, std::nullopt, "", {}};
+  PlotSpec penetration{"penetration",
+                       "Deepest penetration between any two bodies or a body and the ground, the most of each "
+                       "interval between frames",
+                       "t (s)", "depth (m)", false, 1e-12, std::nullopt, "", {}};
   PlotSpec stacks{"stack_height", "Height of the tallest stack", "t (s)", "height (m)", false, 1e-12, std::nullopt,
                   "", {}};
   PlotSpec difference{"position_difference",
@@ -359,7 +363,20 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
       impacts.y.push_back(at_time(run.recording.frames.t, run.recording.frames.energy, ev.t));
     }
     energy.series.push_back(std::move(impacts));
-    penetration.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.penetration, Style::Line, color});
+    const FrameSeries& f = run.recording.frames;
+    PlotSeries translational{run.engine + " translational", f.t, {}, Style::Dashed, color},
+        rotational{run.engine + " rotational", f.t, f.rotational, Style::Dotted, color},
+        potential{run.engine + " potential", f.t, {}, Style::DashDot, color};
+    for (std::size_t k = 0; k < f.t.size() && k < f.kinetic.size() && k < f.rotational.size() && k < f.energy.size(); ++k) {
+      translational.y.push_back(f.kinetic[k] - f.rotational[k]);
+      potential.y.push_back(f.energy[k] - f.kinetic[k]);
+    }
+    energy.series.push_back(std::move(translational));
+    energy.series.push_back(std::move(rotational));
+    energy.series.push_back(std::move(potential));
+    penetration.series.push_back({run.engine, f.t,
+                                  run.interval_penetration.size() == f.t.size() ? run.interval_penetration : f.penetration,
+                                  Style::Line, color});
     stacks.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.stack_height, Style::Line, color});
   }
   for (std::size_t p = 0; p < r.pairs.size(); ++p) {

@@ -28,6 +28,13 @@ std::string stem_of(const std::string& scene) {
   return stem;
 }
 
+// A scene's name for titles (the path a grid gives may be long and relative).
+std::string name_of(const SweepReport& r, const std::string& scene) {
+  for (const CellResult& c : r.cells)
+    if (c.scene == scene && !c.scene_name.empty()) return c.scene_name;
+  return fs::path(scene).stem().string();
+}
+
 double error_of(const CellResult& c, const std::string& measure) {
   const nlohmann::json& e = c.measures.error.at(measure);
   return e.is_number() ? e.get<double>() : NAN;
@@ -48,7 +55,7 @@ PlotSpec log_plot(std::string name, std::string title, std::string xlabel, std::
 PlotSpec front_plot(const SweepReport& r, const std::string& scene, const std::string& stem, const ErrorMeasure& m,
                     const std::vector<std::string>& engines) {
   const std::string measure(m.name);
-  PlotSpec spec = log_plot("front_" + stem + "_" + measure, scene + ": " + measure + " against cost",
+  PlotSpec spec = log_plot("front_" + stem + "_" + measure, name_of(r, scene) + ": " + measure + " against cost",
                            "µs per simulated second", measure + " (" + std::string(m.unit) + ")", true);
   const SceneFronts fronts = fronts_of(r, scene, measure);
   for (const std::string& e : engines) {
@@ -97,7 +104,7 @@ const CellResult* convergence_cell(const SweepReport& r, const std::string& scen
 
 PlotSpec convergence_plot(const CellResult& c, const std::string& stem) {
   PlotSpec spec = log_plot("convergence_" + stem,
-                           fs::path(c.scene).filename().string() + ": residual after each pass (mean over the run)",
+                           c.scene_name + ": residual after each pass (mean over the run)",
                            "pass", "largest approaching normal velocity (m/s)", false);
   auto series = [](const std::string& title, const std::vector<double>& y, int color) {
     PlotSeries s{title, {}, y, Style::LinePoints, plot_colour(color)};
@@ -116,10 +123,12 @@ PlotSpec convergence_plot(const CellResult& c, const std::string& stem) {
 // settings and dt. Empty when no engine sweeps its iterations.
 PlotSpec iterations_plot(const SweepReport& r, const std::string& scene, const std::string& stem, const ErrorMeasure& m) {
   const std::string measure(m.name);
-  PlotSpec spec = log_plot("iterations_" + stem + "_" + measure, scene + ": " + measure + " against solver iterations",
+  PlotSpec spec = log_plot("iterations_" + stem + "_" + measure,
+                           name_of(r, scene) + ": " + measure + " against solver iterations",
                            "iterations", measure + " (" + std::string(m.unit) + ")", true);
   std::map<std::string, PlotSeries> lines;
   std::vector<std::string> order;
+  std::map<std::string, int> lines_of_engine;  // each engine's lines differ in dash type and point
   for (const CellResult& c : r.cells) {
     if (c.scene != scene || !c.spec.settings.contains("iterations") || !c.measures.stable) continue;
     const double err = error_of(c, measure);
@@ -130,6 +139,7 @@ PlotSpec iterations_plot(const SweepReport& r, const std::string& scene, const s
                               std::to_string(c.spec.dt).substr(0, 8);
     if (!lines.count(title)) {
       lines[title] = PlotSeries{title, {}, {}, Style::LinePoints, engine_colour(c.spec.engine)};
+      lines[title].dash = 1 + lines_of_engine[c.spec.engine]++ % 5;
       order.push_back(title);
     }
     lines[title].x.push_back(c.spec.settings.at("iterations").get<double>());

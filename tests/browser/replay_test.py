@@ -36,8 +36,8 @@ GROUND_VALUE = (0.35, 0.8)
 # The ground fills the lower part of every viewport: at least this fraction of its pixels.
 MIN_GROUND_FRACTION = 0.15
 WINDOW = (1200, 700)
-# The frame shown in the checks: the first frame after a step (frame 0 has no contact set yet).
-FRAME = 1
+# The frame shown in the checks: the start, which shows the first step's contact set.
+FRAME = 0
 # Tries of the playing page before its check fails (see main).
 PLAY_ATTEMPTS = 3
 

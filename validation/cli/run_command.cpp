@@ -112,6 +112,10 @@ void print_profile(const StepProfile& profile, long steps) {
   std::fflush(stdout);
 }
 
+// Before its first percent a long run tells its progress line every this many steps (which
+// estimates the run's cost after its first second).
+constexpr long kEarlyProgressSteps = 64;
+
 }  // namespace
 
 void add_run_command(CLI::App& app, RunOptions& options) {
@@ -191,9 +195,13 @@ int run_run(const RunOptions& options) {
   // step: run_loop polls it).
   ProgressPrinter progress;
   const long progress_every = std::max(1L, steps / 100);
-  if (steps >= kProgressMinSteps) {
+  if (record || steps >= kProgressMinSteps) {
     hooks.step = [&](const StepView& v) {
-      if (v.step == 0 || v.step % progress_every != 0) return;
+      if (record) recorder.first_step(v);
+      if (steps < kProgressMinSteps) return;
+      // Before the first percent too, so that a run of hours says so within its first second.
+      const bool early = v.step < progress_every && v.step % kEarlyProgressSteps == 0;
+      if (v.step == 0 || (v.step % progress_every != 0 && !early)) return;
       progress({options.engine, "", 0, 1, static_cast<double>(v.step) / static_cast<double>(steps)});
     };
   }
