@@ -1,6 +1,8 @@
 #include "boxpile/reference/registry.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 
 #include "boxpile/reference/bullet/bullet_contacts.hpp"
 #include "boxpile/reference/bullet/bullet_engine.hpp"
@@ -119,44 +121,55 @@ Manifold own_box_plane(const OrientedBox& a, const HalfSpace& plane, const Detec
   return m;
 }
 
+EngineRow coloured(std::string colour, EngineRow row) {
+  row.colour = std::move(colour);
+  return row;
+}
+
+// The colours of engines whose rows bring none: far from the built-in rows' colours and from
+// each other, readable on white plots and on the replay page's dark background.
+constexpr std::array<const char*, 8> kSpareColours = {"#7F3C8D", "#3969AC", "#11A579", "#E73F74",
+                                                      "#008695", "#CF1C90", "#4B4B8F", "#A5AA99"};
+
 // The built-in rows, in the order help texts list them. Adding an engine is one row here (and
 // its folder: see registry.hpp).
 std::vector<EngineRow> built_in_rows() {
   std::vector<EngineRow> rows;
-  rows.push_back(own_row("own", "boxpile's simulator, the scene's solver.method (built in)", std::nullopt,
+  // Okabe and Ito's colour-blind safe palette, one colour per row.
+  rows.push_back(coloured("#0072B2", own_row("own", "boxpile's simulator, the scene's solver.method (built in)", std::nullopt,
                          {.compare = true, .stability = true},
                          {{"own", "boxpile's separating-axis test with face clipping", false, &own_box_box,
-                           &own_box_plane}}));
-  rows.push_back(own_row("own-impulse", "boxpile's simulator, impulse method forced (built in)",
-                         ContactSolver::Impulse, {.main_job = true}));
-  rows.push_back(own_row("own-penalty", "boxpile's simulator, penalty method forced (built in)",
-                         ContactSolver::Penalty, {.main_job = true}));
-  rows.push_back(typed_row<OdeEngine>(
+                           &own_box_plane}})));
+  rows.push_back(coloured("#56B4E9", own_row("own-impulse", "boxpile's simulator, impulse method forced (built in)",
+                                             ContactSolver::Impulse, {.main_job = true})));
+  rows.push_back(coloured("#CC79A7", own_row("own-penalty", "boxpile's simulator, penalty method forced (built in)",
+                                             ContactSolver::Penalty, {.main_job = true})));
+  rows.push_back(coloured("#D55E00", typed_row<OdeEngine>(
       "ode", "ODE 0.16, double precision (Debian libode-dev, pkg-config ode)", &ode_settings_table,
       {.compare = true, .stability = true, .main_job = true},
       {{"ode", "ODE's dCollide (dBoxBox, box-plane)", false,
         [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return ode_box_box(a, b); },
-        [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return ode_box_plane(a, p); }}}));
-  rows.push_back(typed_row<BulletEngine>(
+        [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return ode_box_plane(a, p); }}})));
+  rows.push_back(coloured("#009E73", typed_row<BulletEngine>(
       "bullet", "Bullet 3.24, double precision (Debian libbullet-dev, pkg-config bullet-float64)",
       &bullet_settings_table, {.compare = true, .stability = true, .main_job = true},
       {{"bullet", "Bullet's btBoxBoxDetector through a persistent manifold", false,
         [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return bullet_box_box(a, b); },
         [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return bullet_box_plane(a, p); }},
-       {"bullet_multipoint", "Bullet with setPlaneConvexMultipointIterations(3, 3)", true,
+       {"bullet-multipoint", "Bullet with setPlaneConvexMultipointIterations(3, 3)", true,
         [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return bullet_box_box(a, b); },
         [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) {
           return bullet_box_plane(a, p, kBulletMultipoint);
-        }}}));
-  rows.push_back(typed_row<MujocoEngine>(
+        }}})));
+  rows.push_back(coloured("#E69F00", typed_row<MujocoEngine>(
       "mujoco", "MuJoCo 2.2.2, double precision, C API (Debian libmujoco-dev)", &mujoco_settings_table,
       {},
       {{"mujoco", "MuJoCo 2.2.2's collision table (mjc_BoxBox, mjc_PlaneBox)", false,
         [](const OrientedBox& a, const OrientedBox& b, const DetectOptions&) { return mujoco_box_box(a, b); },
-        [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return mujoco_box_plane(a, p); }}}));
+        [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) { return mujoco_box_plane(a, p); }}})));
   // DART is in no default list, as MuJoCo: its Dantzig LCP costs about 10 times ODE's QuickStep
   // a step (docs/reference-engines.md); `--engines ...,dart` adds it.
-  rows.push_back(typed_row<DartEngine>(
+  rows.push_back(coloured("#8C564B", typed_row<DartEngine>(
       "dart", "DART 6.12.1, double precision, Dantzig LCP (Debian libdart-dev, libdart-collision-ode-dev)",
       &dart_settings_table, {},
       {{"dart", "DART's DARTCollisionDetector (box-box; the ground as a large box)", false,
@@ -172,7 +185,7 @@ std::vector<EngineRow> built_in_rows() {
         },
         [](const OrientedBox& a, const HalfSpace& p, const DetectOptions&) {
           return dart_box_plane(DartDetector::FclPrimitive, a, p);
-        }}}));
+        }}})));
   return rows;
 }
 
@@ -324,6 +337,14 @@ json resolved_settings(std::string_view name, const Scene& scene, const json& se
   }
   out[time_step_key()] = s.time.dt;
   return out;
+}
+
+std::string engine_colour(std::string_view name) {
+  if (const EngineRow* row = find_engine_row(name); row && !row->colour.empty()) return row->colour;
+  // FNV-1a of the name: the same colour in every process and on every machine.
+  std::uint32_t hash = 2166136261u;
+  for (char c : name) hash = (hash ^ static_cast<unsigned char>(c)) * 16777619u;
+  return kSpareColours[hash % kSpareColours.size()];
 }
 
 const std::deque<DetectorInfo>& detectors() { return registry().detectors; }

@@ -19,10 +19,11 @@
 //                              which scripts/install-deps reads and the row's title names;
 //    and its sources in reference/CMakeLists.txt (its find_package/pkg_check_modules beside
 //    ODE's and Bullet's).
-// 2. One row in kBuiltInRows (reference/registry.cpp):
-//      typed_row<NameEngine>("name", "Name 1.2 (Debian libname-dev)", &name_settings_table,
+// 2. One row in kBuiltInRows (reference/registry.cpp), with its colour in every plot:
+//      coloured("#rrggbb", typed_row<NameEngine>("name", "Name 1.2 (Debian libname-dev)",
+//                            &name_settings_table,
 //                            {.compare = true, .stability = true, .main_job = false},
-//                            {/* DetectorInfo rows, or none */})
+//                            {/* DetectorInfo rows, or none */}))
 //    or, for an engine that cannot be built here, a row with `unavailable` saying why.
 // That is all: `boxpile run --engine name`, `--set name.KEY=VALUE`, sweep grids, `boxpile
 // settings`, compare's and stability's reports (which record every setting's value) and the
@@ -97,6 +98,9 @@ struct EngineRow {
   // The contact detectors the engine brings (none, one, or variants of one).
   std::vector<DetectorInfo> detectors;
   DefaultLists in;
+  // The engine's colour in every plot, lab figure and replay page ("#rrggbb"); empty: the colour
+  // engine_colour() picks from the name alone.
+  std::string colour;
   // Why the engine cannot be built here; empty when it can.
   std::string unavailable;
 
@@ -118,6 +122,11 @@ std::vector<std::string> available_engine_names();
 std::string available_engines_text();
 // The default engine list of a command: the available rows with `list` set, in registry order.
 std::vector<std::string> default_engines(bool DefaultLists::*list);
+
+// The one colour of the engine `name` in every plot, lab figure and replay page ("#rrggbb"): its
+// row's, else (a row without one, a run file of an engine not registered now) one picked from the
+// name alone, so that a name is drawn in one colour wherever it is drawn.
+std::string engine_colour(std::string_view name);
 
 // Throws UnknownEngine unless make_engine() can build `name`.
 void check_engine_name(std::string_view name);

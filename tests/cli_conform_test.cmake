@@ -82,6 +82,14 @@ string(JSON saved ERROR_VARIABLE no_saved GET "${out}" engines "collider (saved)
 if(no_saved)
   fail("${first_file}: no saved collider answer in `boxpile contacts`: ${out}")
 endif()
+# Without --out, conform writes ./boxpile-conform/ as compare writes ./boxpile-report/.
+file(MAKE_DIRECTORY "${WORK}/default_out")
+execute_process(COMMAND "${BOXPILE}" conform --collider "${own_collider}" --samples 5 --cases none
+                WORKING_DIRECTORY "${WORK}/default_out" RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT code EQUAL 0 OR NOT EXISTS "${WORK}/default_out/boxpile-conform/conform.json")
+  fail("conform without --out: exit ${code}, no boxpile-conform/conform.json\n${out}${err}")
+endif()
+
 # The same folder again replaces the report; a folder that is no conform report is refused.
 run_boxpile(1 conform --collider "python3 ${EXAMPLES}/colliders/face_axes.py" --samples 10 --cases none
             --report "${WORK}/py")

@@ -121,3 +121,94 @@ string(JSON engine GET "${penalty_run}" engine)
 if(NOT method STREQUAL "penalty" OR NOT engine STREQUAL "own-penalty")
   message(SEND_ERROR "own-penalty: method ${method}, engine ${engine}")
 endif()
+
+# --- the command line as a new user types it ---
+# A list option takes one word: the file after it stays the scene or the query.
+run(engines_then_scene 0 "report.md" compare --engines own,ode "${FIXTURES}/scenes/stack_5.json" --duration 0.02
+    --report "${WORK}/engines_then_scene")
+run(engines_then_query 0 "" contacts --engines own,ode "${FIXTURES}/contacts/aligned_offset.json" --format json)
+string(JSON n LENGTH "${last_out}" engines ode contacts)
+if(NOT n EQUAL 4)
+  message(SEND_ERROR "contacts --engines own,ode QUERY: ${n} ode contacts, expected 4\n${last_out}")
+endif()
+# --out names every command's output; --report is the same on the commands that write a report.
+run(compare_out 0 "${WORK}/compare_out/report.md" compare "${FIXTURES}/scenes/stack_5.json" --engines own --duration 0.02
+    --out "${WORK}/compare_out")
+# Names use hyphens; the old underscore spelling is refused with the new name.
+run(old_detector_name 2 "did you mean \"bullet-multipoint\"" contacts --engines bullet_multipoint
+    "${FIXTURES}/contacts/plane_flat.json")
+run(new_detector_name 0 "" contacts --engines bullet-multipoint "${FIXTURES}/contacts/plane_flat.json" --format json)
+# Each command's help gives its own exit codes, not the top level's text.
+foreach(pair "conform;0 the collider is within every gate" "stability;1 our engine failed a check"
+             "run;1 a state became non-finite" "sweep;are findings in it")
+  list(GET pair 0 command)
+  list(GET pair 1 text)
+  run(help_${command} 0 "${text}" ${command} --help)
+  string(FIND "${last_out}" "Without a command" at)
+  if(NOT at EQUAL -1)
+    message(SEND_ERROR "${command} --help repeats the top level's text\n${last_out}")
+  endif()
+endforeach()
+run(help_top 0 "Without a command" --help)
+# run --out says what it wrote where.
+run(run_out_says 0 "run: ${WORK}/said.json" run "${FIXTURES}/scenes/stack_5.json" --engine own --duration 0.02
+    --out "${WORK}/said.json")
+string(FIND "${last_out}" "2 frames recorded" at)
+if(at EQUAL -1)
+  message(SEND_ERROR "run --out: the frames recorded are not said\n${last_out}")
+endif()
+
+# --- boxpile scene: a valid scene on stdout or into --out, that loads and runs ---
+run(scene_pyramid 0 "" scene pyramid --base 10)
+file(WRITE "${WORK}/pyramid.json" "${last_out}")
+string(JSON n LENGTH "${last_out}" bodies)
+if(NOT n EQUAL 55)
+  message(SEND_ERROR "scene pyramid --base 10: ${n} boxes, expected 55")
+endif()
+run(scene_pyramid_runs 0 "55 bodies" run "${WORK}/pyramid.json" --engine own --duration 0.05)
+foreach(kind wall tower grid heap dominoes)
+  run(scene_${kind} 0 "scene: ${WORK}/${kind}.json" scene ${kind} --out "${WORK}/${kind}.json")
+  run(scene_${kind}_runs 0 "" run "${WORK}/${kind}.json" --engine ode --duration 0.05)
+endforeach()
+run(scene_size_not_taken 2 "--base: tower does not take it" scene tower --base 3)
+run(scene_unknown_kind 2 "castle" scene castle)
+
+# --- names from a scene cannot steer the terminal ---
+# U+202E (a right-to-left override) in a body's name: escaped on a terminal (script(1) gives the
+# run one), exact when piped and in the run file.
+string(ASCII 226 128 174 rlo)  # its UTF-8 bytes E2 80 AE
+file(WRITE "${WORK}/rlo.json" "{\"name\": \"rlo\", \"bodies\": [{\"name\": \"b${rlo}evil\", \"mass\": 1, \"half_extents\": [0.5, 0.5, 0.5], \"position\": [0, 0, 0.5]}],
+ \"time\": {\"dt\": 0.01, \"duration\": 0.02}}")
+find_program(SCRIPT_PROGRAM script)
+if(SCRIPT_PROGRAM)
+  execute_process(COMMAND "${SCRIPT_PROGRAM}" -qec "\"${BOXPILE}\" run \"${WORK}/rlo.json\" --engine own" /dev/null
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(FIND "${out}" "b\\u202eevil" escaped)
+  string(FIND "${out}" "${rlo}" raw)
+  if(NOT rc EQUAL 0 OR escaped EQUAL -1 OR NOT raw EQUAL -1)
+    message(SEND_ERROR "a bidirectional override on a terminal: exit ${rc}, not escaped\n${out}${err}")
+  endif()
+else()
+  message(SEND_ERROR "script(1) not found (util-linux)")
+endif()
+run(rlo_piped 0 "b${rlo}evil" run "${WORK}/rlo.json" --engine own)
+run(rlo_file 0 "" run "${WORK}/rlo.json" --engine own --out "${WORK}/rlo_run.json")
+file(READ "${WORK}/rlo_run.json" rlo_run)
+string(FIND "${rlo_run}" "b${rlo}evil" at)
+if(at EQUAL -1)
+  message(SEND_ERROR "the run file does not hold the name exactly")
+endif()
+# A C1 control in a name is refused, echoed escaped; a name of zero-width spaces is refused.
+string(ASCII 194 155 csi)  # U+009B
+file(WRITE "${WORK}/csi.json" "{\"name\": \"csi\", \"bodies\": [{\"name\": \"b${csi}2J\", \"mass\": 1, \"half_extents\": [0.5, 0.5, 0.5], \"position\": [0, 0, 0.5]}],
+ \"time\": {\"dt\": 0.01, \"duration\": 0.02}}")
+run(csi_name 2 "csi.json: bodies[0].name: must not contain control characters, got \"b\\u009b2J\"" run "${WORK}/csi.json" --engine own)
+execute_process(COMMAND "${BOXPILE}" run "${WORK}/csi.json" --engine own ERROR_VARIABLE err OUTPUT_QUIET)
+string(FIND "${err}" "${csi}" raw)
+if(NOT raw EQUAL -1)
+  message(SEND_ERROR "a C1 control reached standard error raw\n${err}")
+endif()
+string(ASCII 226 128 139 zwsp)  # U+200B
+file(WRITE "${WORK}/zwsp.json" "{\"name\": \"zwsp\", \"bodies\": [{\"name\": \"${zwsp}${zwsp}\", \"mass\": 1, \"half_extents\": [0.5, 0.5, 0.5], \"position\": [0, 0, 0.5]}],
+ \"time\": {\"dt\": 0.01, \"duration\": 0.02}}")
+run(zwsp_name 2 "zwsp.json: bodies[0].name: must not be only invisible characters" run "${WORK}/zwsp.json" --engine own)

@@ -5,17 +5,22 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/plots.hpp"
+#include "boxpile/validation/replay_data.hpp"
 #include "boxpile/validation/report.hpp"
 #include "boxpile/validation/report_directory.hpp"
 #include "boxpile/validation/stacks.hpp"
@@ -268,4 +273,84 @@ TEST_CASE("bad input to boxpile compare exits with 2 and writes no report", "[co
   CHECK(run_boxpile("compare " + scene + " --dt -1 --report " + report) == 2);
   // Nothing but the file made above: no report, no staging directory.
   CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);
+}
+
+TEST_CASE("an engine has one colour in a 2-engine and a 4-engine compare's plots and replay data", "[compare]") {
+  Scene scene = fixture("stack_5");
+  scene.time.duration = 0.05;
+  // The colour of every series titled `engine` in the plots, and of its replay data.
+  const auto colours_of = [&scene](const CompareResult& r, const std::string& engine) {
+    std::set<std::string> colours;
+    for (const PlotSpec& p : report_plots(r))
+      for (const PlotSeries& s : p.series)
+        if (s.title == engine) colours.insert(s.colour);
+    std::vector<const Recording*> runs;
+    for (const EngineRun& run : r.runs) runs.push_back(&run.recording);
+    for (const json& e : replay_data(scene.name, runs, {}).at("engines"))
+      if (e.at("name") == engine) colours.insert(e.at("colour").get<std::string>());
+    return colours;
+  };
+  CompareSettings two, four;
+  two.engines = {"own", "ode"};
+  four.engines = {"bullet", "mujoco", "own-impulse", "ode"};
+  const CompareResult a = run_compare(scene, two), b = run_compare(scene, four);
+  // The start frame holds the first step's contact set (the stack rests on its contacts), so a
+  // replay opens on them.
+  for (const EngineRun& run : b.runs) {
+    INFO(run.engine);
+    CHECK(run.recording.frames.contacts.at(0).size() >= 4);
+  }
+  const std::set<std::string> expected = {engine_colour("ode")};
+  CHECK(colours_of(a, "ode") == expected);
+  CHECK(colours_of(b, "ode") == expected);
+  // Four engines, four colours, none of them a pair's line.
+  std::set<std::string> all;
+  for (const std::string& e : four.engines) {
+    const std::set<std::string> c = colours_of(b, e);
+    REQUIRE(c.size() == 1);
+    all.insert(*c.begin());
+  }
+  CHECK(all.size() == 4);
+  for (const PlotSpec& p : report_plots(b))
+    for (const PlotSeries& s : p.series)
+      if (s.title.find(" vs ") != std::string::npos) CHECK(all.count(s.colour) == 0);
+  // A name without a row gets the same colour each time it is asked.
+  CHECK(engine_colour("someone-elses") == engine_colour("someone-elses"));
+  CHECK(engine_colour("someone-elses").size() == 7);
+}
+
+TEST_CASE("compare's penetration plot holds each interval's deepest, its energy plot the parts", "[compare]") {
+  // The bounce: a box dropped on the ground, its deepest penetration at an impact between frames.
+  Scene scene = fixture("bounce");
+  scene.time.duration = std::min(scene.time.duration, 1.0);
+  CompareSettings settings;
+  settings.engines = {"own", "ode"};
+  const CompareResult r = run_compare(scene, settings);
+  const std::vector<PlotSpec> plots = report_plots(r);
+  const PlotSpec& energy = plots.at(0);
+  const PlotSpec& penetration = plots.at(1);
+  REQUIRE(penetration.name == "penetration");
+  for (const EngineRun& run : r.runs) {
+    INFO(run.engine);
+    const FrameSeries& f = run.recording.frames;
+    REQUIRE(run.interval_penetration.size() == f.t.size());
+    // The largest of the intervals is the deepest of every step, which the table reports.
+    CHECK(*std::max_element(run.interval_penetration.begin(), run.interval_penetration.end()) == run.deepest.depth);
+    for (std::size_t k = 0; k < f.t.size(); ++k) CHECK(run.interval_penetration[k] >= f.penetration[k] - 1e-12);
+    const auto series = [&](const PlotSpec& p, const std::string& title) -> const PlotSeries& {
+      for (const PlotSeries& s : p.series)
+        if (s.title == title) return s;
+      FAIL("no series " << title << " in " << p.name);
+      return p.series.front();
+    };
+    CHECK(series(penetration, run.engine).y == run.interval_penetration);
+    const PlotSeries& total = series(energy, run.engine);
+    const PlotSeries& translational = series(energy, run.engine + " translational");
+    const PlotSeries& rotational = series(energy, run.engine + " rotational");
+    const PlotSeries& potential = series(energy, run.engine + " potential");
+    REQUIRE(translational.y.size() == total.y.size());
+    for (std::size_t k = 0; k < total.y.size(); ++k) {
+      CHECK(translational.y[k] + rotational.y[k] + potential.y[k] == Approx(total.y[k]).margin(1e-9));
+    }
+  }
 }

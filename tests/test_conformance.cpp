@@ -480,7 +480,7 @@ struct PlaneReference {
 //   bullet            the deepest vertex alone, and also a vertex a little above the plane (within
 //                     its contact breaking threshold) with a negative depth, where we report none
 //                     (2.6% / 2.4% of the samples)
-//   bullet_multipoint our deepest vertex and the vertices its perturbed iterations add, at most 4:
+//   bullet-multipoint our deepest vertex and the vertices its perturbed iterations add, at most 4:
 //                     fewer than min(ours, 4) in 67% / 67% of the samples (gated at 75%: twice is
 //                     past 100%), other than our deepest ones in 2.0e-4 / 3.6e-4; speculative
 //                     points as Bullet's
@@ -489,7 +489,7 @@ struct PlaneReference {
 const std::vector<PlaneReference> kPlaneReferences = {
     {"ode", 4, false, true, 0.03, 0.03},
     {"bullet", 1, true, true},
-    {"bullet_multipoint", 4, true, true, 0.75, 8e-4},
+    {"bullet-multipoint", 4, true, true, 0.75, 8e-4},
     {"mujoco", 4, false, true},
     // dart, fcl: dBoxBox against the ground box (a box of 1e3 m under the plane), at most 4 points
     // culled by spread rather than depth: fewer than min(ours, 4) in 9.5% of the samples (1,899 of
@@ -628,15 +628,15 @@ const std::vector<FixtureExpectation> kFixtures = {
     {"deep_overlap", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 4}, {"mujoco", 5, kDiffer}}, {}},
     {"parallel_edges", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 2}, {"mujoco", 5, kDiffer}}, {}},  // Bullet merges points 7 mm apart
     {"small_on_large", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 4}, {"mujoco", 5, kDiffer}}, {}},
-    {"plane_flat", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 1}, {"bullet_multipoint", 3}, {"mujoco", 4}}, {}},
-    {"plane_edge", {{"own", 2}, {"ode", 2}, {"dart", 2}, {"fcl", 2}, {"bullet", 1}, {"bullet_multipoint", 2}, {"mujoco", 2}}, {}},
-    {"plane_vertex", {{"own", 1}, {"ode", 1}, {"dart", 1}, {"fcl", 1}, {"bullet", 1}, {"bullet_multipoint", 1}, {"mujoco", 1}}, {}},
-    {"plane_tilted", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 1}, {"bullet_multipoint", 3}, {"mujoco", 4}}, {}},
+    {"plane_flat", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 1}, {"bullet-multipoint", 3}, {"mujoco", 4}}, {}},
+    {"plane_edge", {{"own", 2}, {"ode", 2}, {"dart", 2}, {"fcl", 2}, {"bullet", 1}, {"bullet-multipoint", 2}, {"mujoco", 2}}, {}},
+    {"plane_vertex", {{"own", 1}, {"ode", 1}, {"dart", 1}, {"fcl", 1}, {"bullet", 1}, {"bullet-multipoint", 1}, {"mujoco", 1}}, {}},
+    {"plane_tilted", {{"own", 4}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 1}, {"bullet-multipoint", 3}, {"mujoco", 4}}, {}},
     // Conventions that differ by design.
     {"plane_bullet_speculative",
-     {{"own", 0}, {"ode", 0}, {"dart", 0}, {"fcl", 0}, {"bullet", 1, kDiffer}, {"bullet_multipoint", 3, kDiffer}, {"mujoco", 0}}, {}},
-    {"plane_deep_six", {{"own", 6}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 1}, {"bullet_multipoint", 1}, {"mujoco", 4}}, {}},
-    {"plane_ode_missed_vertex", {{"own", 4}, {"ode", 3}, {"dart", 3}, {"fcl", 3}, {"bullet", 1}, {"bullet_multipoint", 1}, {"mujoco", 4}}, {}},
+     {{"own", 0}, {"ode", 0}, {"dart", 0}, {"fcl", 0}, {"bullet", 1, kDiffer}, {"bullet-multipoint", 3, kDiffer}, {"mujoco", 0}}, {}},
+    {"plane_deep_six", {{"own", 6}, {"ode", 4}, {"dart", 4}, {"fcl", 4}, {"bullet", 1}, {"bullet-multipoint", 1}, {"mujoco", 4}}, {}},
+    {"plane_ode_missed_vertex", {{"own", 4}, {"ode", 3}, {"dart", 3}, {"fcl", 3}, {"bullet", 1}, {"bullet-multipoint", 1}, {"mujoco", 4}}, {}},
     {"bullet_merged_points", {{"own", 3}, {"ode", 3}, {"dart", 3}, {"fcl", 3}, {"bullet", 2}, {"mujoco", 3, kDiffer}}, {}},
     // Our near-face edge-edge set: the references' one edge point, then two of the face's clipped points.
     {"near_face_edge", {{"own", 3}, {"ode", 1}, {"dart", 1}, {"fcl", 1}, {"bullet", 1, kDiffer}, {"mujoco", 3, kDiffer}}, {}},  // Bullet's fudge2: 4e-6 m deeper

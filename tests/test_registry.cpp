@@ -18,6 +18,7 @@
 
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/limits.hpp"
 #include "boxpile/sim/world.hpp"
 #include "boxpile/tests/support/work_dir.hpp"
 #include "boxpile/validation/compare.hpp"
@@ -83,7 +84,7 @@ TEST_CASE("The registry's lists are its rows'", "[registry]") {
   CHECK(StabilitySettings{}.engines == default_engines(&DefaultLists::stability));
   Names detector_names;
   for (const DetectorInfo& d : detectors()) detector_names.push_back(d.name);
-  CHECK(detector_names == Names{"own", "ode", "bullet", "bullet_multipoint", "mujoco", "dart", "fcl"});
+  CHECK(detector_names == Names{"own", "ode", "bullet", "bullet-multipoint", "mujoco", "dart", "fcl"});
   // Every row has a title, and every available row a factory that builds it under its name
   // (own-impulse and own-penalty are World under their row's name).
   const Scene scene = fixture("stack_5");
@@ -587,4 +588,25 @@ TEST_CASE("stability --tune finds a passing setting that --set reproduces", "[re
   CHECK(!spent.at("passed").get<bool>());
   CHECK(spent.at("out_of_budget").get<bool>());
   CHECK(spent.at("attempts") == 1);
+
+// The half extents' range in docs/scene-format.md is the loader's (sim/limits.hpp), and the
+// integrator's default is said alike on every page that names it.
+TEST_CASE("docs state the loader's half-extent range and the integrator's default", "[registry]") {
+  const std::string docs = std::string(BOXPILE_FIXTURES_DIR) + "/../docs/";
+  const std::string format = read(docs + "scene-format.md");
+  // The doc writes the loader's numbers as 5e-4 and 1e3.
+  CHECK(limits::kMinHalfExtent == 5e-4);
+  CHECK(limits::kMaxHalfExtent == 1e3);
+  const std::string range = "each 5e-4 to 1e3";
+  std::size_t rows = 0;
+  for (std::size_t at = format.find("| `half_extents` |"); at != std::string::npos;
+       at = format.find("| `half_extents` |", at + 1)) {
+    ++rows;
+    const std::string row = format.substr(at, format.find('\n', at) - at);
+    CHECK_THAT(row, Contains(range));
+  }
+  CHECK(rows == 2);
+  CHECK(SolverSettings{}.integrator == PositionIntegrator::SemiImplicitEuler);
+  CHECK_THAT(format, Contains("| `integrator` | string | `\"semi_implicit_euler\"` |"));
+  CHECK_THAT(read(docs + "reference-engines.md"), Contains("`solver.integrator` (semi-implicit Euler by default"));
 }

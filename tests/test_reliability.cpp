@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "boxpile/sim/finite.hpp"
+#include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/sim/io/query_loader.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/limits.hpp"
@@ -173,6 +174,48 @@ TEST_CASE("text after a NUL byte, blank and control-character names", "[reliabil
   s = one_box();
   s["name"] = "bell\a";
   check_refused(s, "name", "control characters");
+  // A C1 control (U+009B opens an escape sequence on many terminals) is a control character too,
+  // echoed as JSON's escape.
+  s = one_box();
+  body0(s)["name"] = "b\u009b2J";
+  check_refused(s, "bodies[0].name", "control characters, got \"b\\u009b2J\"");
+}
+
+TEST_CASE("names of invisible characters only are refused, with their code points", "[reliability]") {
+  json s = one_box();
+  body0(s)["name"] = "\u200b";  // zero-width space
+  check_refused(s, "bodies[0].name", "must not be only invisible characters");
+  check_refused(s, "bodies[0].name", "got U+200B");
+  s = one_box();
+  s["name"] = "\u00a0\u00a0";  // two non-breaking spaces
+  check_refused(s, "name", "got U+00A0 U+00A0");
+  s = one_box();
+  body0(s)["name"] = "\u202e";  // a bidirectional override alone
+  check_refused(s, "bodies[0].name", "invisible");
+  // A visible character among them is a name.
+  s = one_box();
+  body0(s)["name"] = "b\u202eevil";
+  CHECK(parse_scene(s.dump(), "scene.json").bodies.at(0).name == "b\u202eevil");
+}
+
+TEST_CASE("text for a terminal is escaped: C0, C1, bidirectional controls, bytes that are no UTF-8", "[reliability]") {
+  using json_input::terminal_safe;
+  CHECK(terminal_safe("b\u009b2J") == "b\\u009b2J");
+  CHECK(terminal_safe("b\u202eevil") == "b\\u202eevil");
+  CHECK(terminal_safe("\u2066x\u2069\u200f") == "\\u2066x\\u2069\\u200f");
+  CHECK(terminal_safe("b\x1b[2J\a") == "b\\x1b[2J\\x07");
+  CHECK(terminal_safe("a\x9b b\xc3") == "a\\x9b b\\xc3");  // a lone C1 byte, a cut sequence
+  CHECK(terminal_safe("gr\u00fc\u00dfe \u65e5\u672c \U0001F600") == "gr\u00fc\u00dfe \u65e5\u672c \U0001F600");
+  // Layout kept for streams: newline, tab, carriage return and the erase-line sequence only.
+  CHECK(terminal_safe("a\tb\r\x1b[Kc\n", true) == "a\tb\r\x1b[Kc\n");
+  CHECK(terminal_safe("\x1b[2J", true) == "\\x1b[2J");
+  CHECK(terminal_safe("a\nb") == "a\\x0ab");
+  // A stream keeps a cut UTF-8 sequence for its next write.
+  CHECK(json_input::whole_utf8_prefix("ab\xe2\x80") == 2);
+  CHECK(json_input::whole_utf8_prefix("ab\xe2\x80\xae") == 5);
+  CHECK(json_input::whole_utf8_prefix("ab") == 2);
+  // Inside a JSON string the escape reads back as the same character.
+  CHECK(json::parse("\"" + terminal_safe("b\u202eevil") + "\"") == "b\u202eevil");
 }
 
 TEST_CASE("the bad fixtures of the reliability pass give their errors", "[reliability]") {

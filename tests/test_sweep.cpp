@@ -18,6 +18,7 @@
 #include "boxpile/validation/stability.hpp"
 #include "boxpile/validation/sweep.hpp"
 #include "boxpile/validation/sweep_grid.hpp"
+#include "boxpile/validation/sweep_plots.hpp"
 #include "boxpile/validation/sweep_report.hpp"
 #include "boxpile/validation/sweep_runner.hpp"
 #include "boxpile/tests/support/work_dir.hpp"
@@ -407,4 +408,27 @@ TEST_CASE("A setting reaches the field it names, from a grid or from run --set",
   CHECK(top_speed(dir / "world.json") < 0.1 * top_speed(dir / "quick.json"));
   CHECK(run_boxpile("run " + scene + " --engine ode --duration 0.1 --set erp=2") == 2);
   CHECK(run_boxpile("run " + scene + " --engine bullet --duration 0.1 --set stepper=world") == 2);
+}
+
+TEST_CASE("Sweep plots name the scene, and one engine's lines differ in dash type", "[sweep]") {
+  const fs::path dir = scratch("sweep_plot_titles");
+  const json engines = {{"ode", {{"iterations", {5, 10}}, {"erp", {0.2, 0.8}}}}};
+  const SweepGrid g = load_grid(grid_file(dir, engines, 0.05).string());
+  SweepRunOptions options;
+  options.work_dir = dir / "cells";
+  SweepReport report;
+  report.cells = run_sweep_cells(g, grid_cells(g), options);
+  REQUIRE(report.cells.size() == 4);
+  CHECK(report.cells[0].scene_name == "stack_5");
+  CHECK(cell_from_json(cell_json(report.cells[0])).scene_name == "stack_5");
+  std::vector<std::string> warnings;
+  fs::create_directories(dir / "plots");
+  write_sweep_plots(report, dir / "plots", warnings);
+  const std::string gp = read(dir / "plots" / "iterations_stack_5_stack_height.gp");
+  CHECK(gp.find("set title 'stack_5: stack_height against solver iterations'") != std::string::npos);
+  CHECK(gp.find("/scenes/") == std::string::npos);
+  // Two lines of ODE (erp 0.2 and 0.8), in ODE's colour, dash types 1 and 2.
+  const std::string colour = "lc rgb '" + engine_colour("ode") + "'";
+  CHECK(gp.find("dt 1 pt 7 ps 0.7 " + colour) != std::string::npos);
+  CHECK(gp.find("dt 2 pt 8 ps 0.7 " + colour) != std::string::npos);
 }

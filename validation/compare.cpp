@@ -127,9 +127,11 @@ EngineRun run_one(const Scene& scene_file, std::string_view name, const CompareS
   Recorder recorder(scene, run.engine, detail);
   std::vector<RigidBody> posed = make_bodies(scene);
   std::vector<BodyContact> contacts;
+  double interval_deepest = 0.0;  // since the last recorded frame
 
   // Every step: energy, penetration and the wires measured, impacts found.
   auto measure_step = [&](const StepView& v) {
+    recorder.first_step(v);
     monitor.observe(v.step, v.states);
     const FrameMetrics m = meter.measure_step(v.states);
     const double e = m.energy.total();
@@ -143,6 +145,7 @@ EngineRun run_one(const Scene& scene_file, std::string_view name, const CompareS
       run.deepest = m.penetration;
       run.deepest_t = v.t;
     }
+    interval_deepest = std::max(interval_deepest, m.penetration.depth);
     wires.measure(v.states);
     if (v.step == 0) return;
     v.engine.contacts(contacts);
@@ -154,6 +157,8 @@ EngineRun run_one(const Scene& scene_file, std::string_view name, const CompareS
     recorder.frame(v);
     if (progress && v.step > 0) progress(static_cast<double>(v.step) / static_cast<double>(steps));
     if (!full) return;
+    run.interval_penetration.push_back(interval_deepest);
+    interval_deepest = 0.0;
     set_body_states(posed, v.states);
     recorder.recording().frames.stack_height.push_back(tallest_stack(posed, scene, settings.touch_tolerance));
     // At the start every body is at rest, wherever the scene put it: a body placed in the air

@@ -98,6 +98,10 @@ struct EngineRun {
   double energy_max_t = 0.0;                                          // s
   Penetration deepest;  // over the whole run
   double deepest_t = 0.0;
+  // Per recorded frame, the deepest penetration of every step since the frame before (the frame
+  // at the start: its own): the penetration plot draws these, so that no peak between frames is
+  // lost; their largest is `deepest.depth`.
+  std::vector<double> interval_penetration;  // m
   double levitation_max = 0.0;  // m, over the recorded frames after the start
   double levitation_final = 0.0;
   std::vector<ImpactEvent> events;

@@ -1,5 +1,6 @@
 #include "boxpile/validation/detectors.hpp"
 
+#include <algorithm>
 #include <string>
 
 namespace boxpile {
@@ -8,8 +9,16 @@ const DetectorInfo& find_detector(std::string_view name) {
   for (const DetectorInfo& d : detectors()) {
     if (d.name == name) return d;
   }
-  std::string known;
+  std::string known, hyphens(name);
   for (const DetectorInfo& d : detectors()) known += (known.empty() ? "" : ", ") + d.name;
+  std::replace(hyphens.begin(), hyphens.end(), '_', '-');
+  for (const DetectorInfo& d : detectors()) {
+    // The names of engines and detectors are spelt with hyphens (bullet_multipoint was once).
+    if (hyphens != name && d.name == hyphens) {
+      throw UnknownDetector("unknown detector \"" + std::string(name) + "\": did you mean \"" + hyphens +
+                            "\"? (names are spelt with hyphens; known: " + known + ")");
+    }
+  }
   throw UnknownDetector("unknown detector \"" + std::string(name) + "\" (known: " + known + ")");
 }
 

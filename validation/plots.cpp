@@ -19,9 +19,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Colours a reader can tell apart (Okabe and Ito's colour-blind safe palette).
-constexpr std::array<const char*, 8> kPalette = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
-                                                 "#E69F00", "#56B4E9", "#F0E442", "#000000"};
+// Colours of series that are no engine's: darker or duller than the engines' (registry.cpp), so
+// that a pair's line is not taken for an engine's.
+constexpr std::array<const char*, 6> kPalette = {"#332288", "#117733", "#88CCEE", "#AA4499",
+                                                 "#661100", "#6699CC"};
 
 // gnuplot strings in single quotes take everything literally except the quote itself, doubled.
 std::string quoted(const std::string& s) {
@@ -49,29 +50,37 @@ void write_text(const fs::path& path, const std::string& text) {
 bool has_points(const PlotSeries& s) { return !s.x.empty() && !s.y.empty(); }
 
 std::string style_of(const PlotSeries& s) {
-  const std::string color = kPalette[static_cast<std::size_t>(s.color) % kPalette.size()];
+  const std::string& color = s.colour;
   switch (s.style) {
     case PlotSeries::Style::Dashed:
       return "with lines lw 1.2 dt 2 lc rgb '" + color + "'";
+    case PlotSeries::Style::Dotted:
+      return "with lines lw 1.5 dt 3 lc rgb '" + color + "'";
+    case PlotSeries::Style::DashDot:
+      return "with lines lw 1.2 dt 4 lc rgb '" + color + "'";
     case PlotSeries::Style::Points:
       return "with points pt 7 ps 0.5 lc rgb '" + color + "'";
     case PlotSeries::Style::Crosses:
       return "with points pt 2 ps 0.9 lc rgb '" + color + "'";
     case PlotSeries::Style::LinePoints:
-      return "with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '" + color + "'";
+      return "with linespoints lw 1.5 dt " + std::to_string(s.dash) + " pt " + std::to_string(6 + s.dash) +
+             " ps 0.7 lc rgb '" + color + "'";
     case PlotSeries::Style::Line:
       break;
   }
-  return "with lines lw 1.5 lc rgb '" + color + "'";
+  return "with lines lw 1.5 dt " + std::to_string(s.dash) + " lc rgb '" + color + "'";
 }
 
 }  // namespace
+
+std::string plot_colour(int k) { return kPalette[static_cast<std::size_t>(k < 0 ? -k : k) % kPalette.size()]; }
 
 void write_plot_files(const fs::path& dir, const PlotSpec& spec) {
   // The data: one block per series (gnuplot's "index"), blocks separated by two blank lines.
   std::ostringstream data;
   data << "# " << spec.title << "\n# x: " << spec.xlabel << "; y: " << spec.ylabel << '\n';
   std::vector<std::size_t> blocks;  // series index of each block
+  bool zeros_on_floor = false;      // a value of exactly 0 drawn at log_floor
   for (std::size_t k = 0; k < spec.series.size(); ++k) {
     const PlotSeries& s = spec.series[k];
     if (!has_points(s)) continue;
@@ -82,6 +91,7 @@ void write_plot_files(const fs::path& dir, const PlotSpec& spec) {
     for (std::size_t i = 0; i < n; ++i) {
       const double x = spec.log_x && std::isfinite(s.x[i]) ? std::max(s.x[i], spec.log_floor) : s.x[i];
       const double y = spec.log_y && std::isfinite(s.y[i]) ? std::max(s.y[i], spec.log_floor) : s.y[i];
+      zeros_on_floor = zeros_on_floor || (spec.log_y && s.y[i] == 0.0) || (spec.log_x && s.x[i] == 0.0);
       data << number(x) << ' ' << number(y) << '\n';
     }
   }
@@ -99,6 +109,10 @@ void write_plot_files(const fs::path& dir, const PlotSpec& spec) {
      << "set datafile missing 'NaN'\n";
   if (spec.log_x) gp << "set logscale x\nset format x '10^{%L}'\n";
   if (spec.log_y) gp << "set logscale y\nset format y '10^{%L}'\n";
+  if (zeros_on_floor) {
+    gp << "set label 2 " << quoted("values of exactly 0 are drawn at " + number(spec.log_floor))
+       << " at graph 0.01, graph 0.03 left font ',10' tc rgb '#555555' noenhanced\n";
+  }
   std::vector<std::string> parts;
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     const PlotSeries& s = spec.series[blocks[b]];

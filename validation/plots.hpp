@@ -11,12 +11,21 @@
 
 namespace boxpile {
 
+// The k-th colour (cyclic) for series that are not one engine's: a pair of engines, a solver's
+// loop. An engine's series take engine_colour(name) (reference/registry.hpp) instead.
+std::string plot_colour(int k);
+
 struct PlotSeries {
-  enum class Style { Line, Dashed, Points, Crosses, LinePoints };
+  enum class Style { Line, Dashed, Dotted, DashDot, Points, Crosses, LinePoints };
   std::string title;
   std::vector<double> x, y;
   Style style = Style::Line;
-  int color = 0;  // index into the plot palette; series of one engine share a colour
+  // "#rrggbb": engine_colour() for an engine's series (series of one engine share it),
+  // plot_colour() for others.
+  std::string colour = plot_colour(0);
+  // gnuplot's dash type of a Line or LinePoints series (1 solid, 2 dashed, 3 dotted, 4 dash-dot,
+  // 5 dash-dot-dot): series of one colour told apart.
+  int dash = 1;
 };
 
 struct PlotSpec {
@@ -29,6 +38,7 @@ struct PlotSpec {
   std::string hline_title;
   std::vector<PlotSeries> series;
   bool log_x = false;  // values below log_floor are drawn at it, as on y
+  // A log axis with values of exactly 0 says, in a note on the plot, where they are drawn.
 };
 
 class PlotError : public std::runtime_error {

@@ -27,12 +27,13 @@ struct NodeEngine {
   std::string_view title;
   std::string_view package;  // the npm package and version (reference/package.json pins it)
   std::string_view adapter;  // relative to the data folder
+  std::string_view colour;   // in every plot and replay page (EngineRow::colour)
 };
 constexpr std::array<NodeEngine, 3> kNodeEngines = {{
-    {"jolt", "Jolt Physics, single precision", "jolt-physics 1.1.0", "reference/jolt/jolt_engine.mjs"},
-    {"rapier", "Rapier, single precision", "@dimforge/rapier3d-compat 0.21.0", "reference/rapier/rapier_engine.mjs"},
+    {"jolt", "Jolt Physics, single precision", "jolt-physics 1.1.0", "reference/jolt/jolt_engine.mjs", "#882255"},
+    {"rapier", "Rapier, single precision", "@dimforge/rapier3d-compat 0.21.0", "reference/rapier/rapier_engine.mjs", "#44AA99"},
     {"mujoco-wasm", "MuJoCo 3.14, double precision", "@mujoco/mujoco 3.14.0",
-     "reference/mujoco_wasm/mujoco_wasm_engine.mjs"},
+     "reference/mujoco_wasm/mujoco_wasm_engine.mjs", "#999933"},
 }};
 constexpr const char* kNodeModules = "reference/node_modules";
 constexpr const char* kInstallHint = " (run scripts/install-deps)";
@@ -113,15 +114,19 @@ EngineRow process_row(const std::string& name, std::string title, const std::str
 
 void add_node_row(const NodeEngine& e) {
   const std::string title = std::string(e.title) + " (WebAssembly in node, npm " + std::string(e.package) + ")";
+  const auto add = [&e](EngineRow row) {
+    row.colour = e.colour;
+    add_engine(std::move(row));
+  };
   if (!on_path("node")) {
-    add_engine(process_row(std::string(e.name), title, "", std::string("node is not installed") + kInstallHint));
+    add(process_row(std::string(e.name), title, "", std::string("node is not installed") + kInstallHint));
     return;
   }
   fs::path data;
   try {
     data = data_directory();
   } catch (const std::exception& error) {
-    add_engine(process_row(std::string(e.name), title, "", error.what()));
+    add(process_row(std::string(e.name), title, "", error.what()));
     return;
   }
   const fs::path adapter = data / e.adapter, modules = data / kNodeModules;
@@ -131,7 +136,7 @@ void add_node_row(const NodeEngine& e) {
   } else if (!fs::is_directory(modules)) {
     unavailable = "its npm packages are missing: " + modules.string() + kInstallHint;
   }
-  add_engine(process_row(std::string(e.name), title, "node " + shell_quote(adapter.string()), unavailable));
+  add(process_row(std::string(e.name), title, "node " + shell_quote(adapter.string()), unavailable));
 }
 
 bool valid_name(std::string_view name) {

@@ -3,6 +3,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/validation/json_output.hpp"
 
@@ -210,6 +211,12 @@ void Recorder::frame(const StepView& view) {
   s.levitation.push_back(last_.levitation);
 }
 
+void Recorder::first_step(const StepView& view) {
+  FrameSeries& s = recording_.frames;
+  if (view.step != 1 || detail_ == RecordDetail::StatesOnly || s.contacts.empty() || !s.contacts[0].empty()) return;
+  view.engine.contacts(s.contacts[0]);
+}
+
 json recording_json(const Recording& r, const std::vector<json>& extra) {
   json frames = json::array();
   for (std::size_t f = 0; f < r.frames.t.size(); ++f) {
@@ -217,7 +224,7 @@ json recording_json(const Recording& r, const std::vector<json>& extra) {
     if (f < extra.size()) frame.update(extra[f]);
     frames.push_back(std::move(frame));
   }
-  json doc = {{"scene", r.scene}, {"engine", r.engine}, {"dt", r.dt}, {"shapes", shapes_json(r.shapes)},
+  json doc = {{"scene", r.scene}, {"engine", r.engine}, {"colour", engine_colour(r.engine)}, {"dt", r.dt}, {"shapes", shapes_json(r.shapes)},
               {"frames", std::move(frames)}};
   if (r.stopped) {
     doc["stopped"] = {{"step", r.stopped->step}, {"t", r.stopped->t}, {"body", r.stopped->body},

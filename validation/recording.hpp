@@ -72,6 +72,10 @@ class Recorder {
   Recorder(const Scene& scene, std::string engine, RecordDetail detail = RecordDetail::Full);
   // Records the frame `view` shows.
   void frame(const StepView& view);
+  // After the first step (view.step == 1): its contact set becomes the start frame's, which has
+  // none of its own (nothing has been stepped yet), so that a replay opens on the contacts that
+  // hold the scene up. A no-op at any other step.
+  void first_step(const StepView& view);
   // The last frame's measurements (after frame()).
   const FrameMetrics& last_metrics() const { return last_; }
   Recording& recording() { return recording_; }

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <bit>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/json_input.hpp"
 
 namespace boxpile {
@@ -88,7 +90,7 @@ json engine_data(const Recording& r, const std::vector<std::size_t>& frames, std
   if (r.stopped) {
     stopped = {{"step", r.stopped->step}, {"t", r.stopped->t}, {"body", r.stopped->body}, {"quantity", r.stopped->quantity}};
   }
-  return {{"name", r.engine},         {"t", std::move(t)},           {"energy", std::move(energy)},
+  return {{"name", r.engine},         {"colour", engine_colour(r.engine)}, {"t", std::move(t)},           {"energy", std::move(energy)},
           {"states", states.text()},  {"contact_counts", counts},    {"contacts", contacts.text()},
           {"contact_bodies", pairs.text()}, {"contact_features", features.text()}, {"stopped", stopped}};
 }
@@ -213,9 +215,15 @@ void check_replay_data(const json& data, const std::string& source) {
   if (n == 0) engines.fail("a replay needs at least one engine");
   for (std::size_t e = 0; e < n; ++e) {
     const JsonNode engine = engines.element(e);
-    engine.expect_object({"name", "t", "energy", "states", "contact_counts", "contacts", "contact_bodies",
+    engine.expect_object({"name", "colour", "t", "energy", "states", "contact_counts", "contacts", "contact_bodies",
                           "contact_features", "stopped"});
     engine.at("name").string();
+    if (engine.has("colour")) {
+      const std::string colour = engine.at("colour").string();
+      const bool hex = colour.size() == 7 && colour[0] == '#' &&
+                       std::all_of(colour.begin() + 1, colour.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); });
+      if (!hex) engine.at("colour").fail("expected a colour \"#rrggbb\"");
+    }
     const std::size_t frames = engine.at("t").array_size();
     engine.at("energy").expect_array_size(frames);
     const JsonNode counts = engine.at("contact_counts");

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/detectors.hpp"
 #include "boxpile/validation/format_number.hpp"
 #include "boxpile/validation/json_output.hpp"
@@ -331,10 +332,14 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
   using Style = PlotSeries::Style;
   std::vector<PlotSpec> plots;
 
-  PlotSpec energy{"energy", "Total energy (kinetic + potential), impacts marked", "t (s)", "energy (J)", false, 1e-12,
-                  std::nullopt, "", {}};
-  PlotSpec penetration{"penetration", "Deepest penetration between any two bodies or a body and the ground", "t (s)",
-                       "depth (m)", false, 1e-12, std::nullopt, "", {}};
+  PlotSpec energy{"energy",
+                  "Energy: total (solid, impacts marked), translational (dashed), rotational (dotted), potential "
+                  "(dash-dot)",
+                  "t (s)", "energy (J)", false, 1e-12, std::nullopt, "", {}};
+  PlotSpec penetration{"penetration",
+                       "Deepest penetration between any two bodies or a body and the ground, the most of each "
+                       "interval between frames",
+                       "t (s)", "depth (m)", false, 1e-12, std::nullopt, "", {}};
   PlotSpec stacks{"stack_height", "Height of the tallest stack", "t (s)", "height (m)", false, 1e-12, std::nullopt,
                   "", {}};
   PlotSpec difference{"position_difference",
@@ -350,7 +355,7 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
 
   for (std::size_t e = 0; e < r.runs.size(); ++e) {
     const EngineRun& run = r.runs[e];
-    const int color = static_cast<int>(e);
+    const std::string color = engine_colour(run.engine);
     energy.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.energy, Style::Line, color});
     PlotSeries impacts{run.engine + " impacts", {}, {}, Style::Points, color};
     for (const ImpactEvent& ev : run.events) {
@@ -358,17 +363,29 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
       impacts.y.push_back(at_time(run.recording.frames.t, run.recording.frames.energy, ev.t));
     }
     energy.series.push_back(std::move(impacts));
-    penetration.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.penetration, Style::Line, color});
+    const FrameSeries& f = run.recording.frames;
+    PlotSeries translational{run.engine + " translational", f.t, {}, Style::Dashed, color},
+        rotational{run.engine + " rotational", f.t, f.rotational, Style::Dotted, color},
+        potential{run.engine + " potential", f.t, {}, Style::DashDot, color};
+    for (std::size_t k = 0; k < f.t.size() && k < f.kinetic.size() && k < f.rotational.size() && k < f.energy.size(); ++k) {
+      translational.y.push_back(f.kinetic[k] - f.rotational[k]);
+      potential.y.push_back(f.energy[k] - f.kinetic[k]);
+    }
+    energy.series.push_back(std::move(translational));
+    energy.series.push_back(std::move(rotational));
+    energy.series.push_back(std::move(potential));
+    penetration.series.push_back({run.engine, f.t,
+                                  run.interval_penetration.size() == f.t.size() ? run.interval_penetration : f.penetration,
+                                  Style::Line, color});
     stacks.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.stack_height, Style::Line, color});
   }
   for (std::size_t p = 0; p < r.pairs.size(); ++p) {
     const RunDifference& d = r.pairs[p].difference;
-    difference.series.push_back({d.a + " vs " + d.b, d.t, d.max_position, Style::Line,
-                                 static_cast<int>(r.runs.size() + p)});
+    difference.series.push_back({d.a + " vs " + d.b, d.t, d.max_position, Style::Line, plot_colour(static_cast<int>(p))});
   }
   for (std::size_t e = 0; e < r.baselines.size(); ++e) {
     const RunDifference& d = r.baselines[e].divergence;
-    difference.series.push_back({d.b, d.t, d.max_position, Style::Dashed, static_cast<int>(e)});
+    difference.series.push_back({d.b, d.t, d.max_position, Style::Dashed, engine_colour(r.runs[e].engine)});
   }
   plots.push_back(std::move(energy));
   plots.push_back(std::move(penetration));

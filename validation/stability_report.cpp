@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/format_number.hpp"
 #include "boxpile/validation/report_directory.hpp"
 
@@ -171,7 +172,7 @@ std::vector<PlotSpec> stability_plots(const StabilityResult& r) {
     energy.title = c.scene + " in " + c.engine + ": total energy minus its start";
     energy.xlabel = "t (s)";
     energy.ylabel = "E - E0 (J)";
-    PlotSeries e{c.engine, c.t, {}, PlotSeries::Style::Line, 0};
+    PlotSeries e{c.engine, c.t, {}, PlotSeries::Style::Line, engine_colour(c.engine)};
     for (double v : c.energy) e.y.push_back(v - c.energy.front());
     energy.series.push_back(std::move(e));
     energy.hline = 0.0;
@@ -184,7 +185,7 @@ std::vector<PlotSpec> stability_plots(const StabilityResult& r) {
     kinetic.xlabel = "t (s)";
     kinetic.ylabel = "kinetic energy (J)";
     kinetic.log_y = true;
-    kinetic.series.push_back({c.engine, c.t, c.kinetic, PlotSeries::Style::Line, 1});
+    kinetic.series.push_back({c.engine, c.t, c.kinetic, PlotSeries::Style::Line, engine_colour(c.engine)});
     plots.push_back(std::move(kinetic));
   }
   return plots;

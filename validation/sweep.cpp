@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <thread>
 
@@ -121,6 +122,7 @@ CellResult run_cell(const SweepGrid& grid, const CellSpec& cell) {
   CellResult r;
   r.spec = cell;
   r.scene = gs.path;
+  r.scene_name = config.scene.name;
   r.steps = step_count(config.scene.time);
 
   // "own-impulse" forces the method; "own" runs the scene's.
@@ -147,6 +149,7 @@ nlohmann::json cell_json(const CellResult& c) {
   }
   nlohmann::json j = {{"index", c.spec.index},
                       {"scene", c.scene},
+                      {"scene_name", c.scene_name},
                       {"engine", c.spec.engine},
                       {"settings", c.spec.settings},
                       {"dt", c.spec.dt},
@@ -170,6 +173,9 @@ CellResult cell_from_json(const nlohmann::json& j) {
   c.spec.settings = j.at("settings");
   c.spec.dt = j.at("dt").get<double>();
   c.scene = j.at("scene").get<std::string>();
+  // Reports written before cells carried the scene's name: its file name stands for it.
+  c.scene_name = j.contains("scene_name") ? j.at("scene_name").get<std::string>()
+                                          : std::filesystem::path(c.scene).stem().string();
   c.steps = j.at("steps").get<long>();
   c.timed_runs = j.at("timed_runs").get<int>();
   c.jobs = j.value("jobs", 1);

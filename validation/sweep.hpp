@@ -30,6 +30,7 @@ struct Convergence {
 struct CellResult {
   CellSpec spec;
   std::string scene;  // the scene's path as the grid names it
+  std::string scene_name;  // the scene's own name (its "name"), for titles
   long steps = 0;
   int timed_runs = 0;
   // Cells timed side by side (--jobs): their timings include that competition.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/plots.hpp"
 #include "boxpile/validation/sweep_report.hpp"
 
@@ -13,8 +14,8 @@ namespace {
 namespace fs = std::filesystem;
 using Style = PlotSeries::Style;
 
-// The overall front is drawn in the palette's black.
-constexpr int kOverallColor = 7;
+// The overall front is drawn in black (no engine's colour).
+constexpr const char* kOverallColour = "#000000";
 // Error values of exactly 0 are drawn at this on the logarithmic axes.
 constexpr double kLogFloor = 1e-14;
 
@@ -25,6 +26,13 @@ std::string stem_of(const std::string& scene) {
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-') ch = '_';
   }
   return stem;
+}
+
+// A scene's name for titles (the path a grid gives may be long and relative).
+std::string name_of(const SweepReport& r, const std::string& scene) {
+  for (const CellResult& c : r.cells)
+    if (c.scene == scene && !c.scene_name.empty()) return c.scene_name;
+  return fs::path(scene).stem().string();
 }
 
 double error_of(const CellResult& c, const std::string& measure) {
@@ -44,18 +52,14 @@ PlotSpec log_plot(std::string name, std::string title, std::string xlabel, std::
   return spec;
 }
 
-int color_of(const std::vector<std::string>& engines, const std::string& engine) {
-  return static_cast<int>(std::find(engines.begin(), engines.end(), engine) - engines.begin());
-}
-
 PlotSpec front_plot(const SweepReport& r, const std::string& scene, const std::string& stem, const ErrorMeasure& m,
                     const std::vector<std::string>& engines) {
   const std::string measure(m.name);
-  PlotSpec spec = log_plot("front_" + stem + "_" + measure, scene + ": " + measure + " against cost",
+  PlotSpec spec = log_plot("front_" + stem + "_" + measure, name_of(r, scene) + ": " + measure + " against cost",
                            "µs per simulated second", measure + " (" + std::string(m.unit) + ")", true);
   const SceneFronts fronts = fronts_of(r, scene, measure);
   for (const std::string& e : engines) {
-    const int color = color_of(engines, e);
+    const std::string color = engine_colour(e);
     PlotSeries passing{e, {}, {}, Style::Points, color}, failing{e + " (fails a check)", {}, {}, Style::Crosses, color};
     for (const CellResult& c : r.cells) {
       if (c.scene != scene || c.spec.engine != e || !c.measures.stable) continue;
@@ -76,7 +80,7 @@ PlotSpec front_plot(const SweepReport& r, const std::string& scene, const std::s
     spec.series.push_back(std::move(failing));
     spec.series.push_back(std::move(front));
   }
-  PlotSeries overall{"front over all engines", {}, {}, Style::Line, kOverallColor};
+  PlotSeries overall{"front over all engines", {}, {}, Style::Line, kOverallColour};
   for (std::size_t i : fronts.overall) {
     overall.x.push_back(r.cells[i].us_per_simulated_second);
     overall.y.push_back(error_of(r.cells[i], measure));
@@ -100,10 +104,10 @@ const CellResult* convergence_cell(const SweepReport& r, const std::string& scen
 
 PlotSpec convergence_plot(const CellResult& c, const std::string& stem) {
   PlotSpec spec = log_plot("convergence_" + stem,
-                           fs::path(c.scene).filename().string() + ": residual after each pass (mean over the run)",
+                           c.scene_name + ": residual after each pass (mean over the run)",
                            "pass", "largest approaching normal velocity (m/s)", false);
   auto series = [](const std::string& title, const std::vector<double>& y, int color) {
-    PlotSeries s{title, {}, y, Style::LinePoints, color};
+    PlotSeries s{title, {}, y, Style::LinePoints, plot_colour(color)};
     for (std::size_t k = 0; k < y.size(); ++k) s.x.push_back(static_cast<double>(k + 1));
     return s;
   };
@@ -117,13 +121,14 @@ PlotSpec convergence_plot(const CellResult& c, const std::string& stem) {
 
 // ODE's and Bullet's error against "iterations": one line per engine and combination of its other
 // settings and dt. Empty when no engine sweeps its iterations.
-PlotSpec iterations_plot(const SweepReport& r, const std::string& scene, const std::string& stem, const ErrorMeasure& m,
-                         const std::vector<std::string>& engines) {
+PlotSpec iterations_plot(const SweepReport& r, const std::string& scene, const std::string& stem, const ErrorMeasure& m) {
   const std::string measure(m.name);
-  PlotSpec spec = log_plot("iterations_" + stem + "_" + measure, scene + ": " + measure + " against solver iterations",
+  PlotSpec spec = log_plot("iterations_" + stem + "_" + measure,
+                           name_of(r, scene) + ": " + measure + " against solver iterations",
                            "iterations", measure + " (" + std::string(m.unit) + ")", true);
   std::map<std::string, PlotSeries> lines;
   std::vector<std::string> order;
+  std::map<std::string, int> lines_of_engine;  // each engine's lines differ in dash type and point
   for (const CellResult& c : r.cells) {
     if (c.scene != scene || !c.spec.settings.contains("iterations") || !c.measures.stable) continue;
     const double err = error_of(c, measure);
@@ -133,7 +138,8 @@ PlotSpec iterations_plot(const SweepReport& r, const std::string& scene, const s
     const std::string title = c.spec.engine + (others.empty() ? "" : " " + settings_label(others)) + " dt=" +
                               std::to_string(c.spec.dt).substr(0, 8);
     if (!lines.count(title)) {
-      lines[title] = PlotSeries{title, {}, {}, Style::LinePoints, color_of(engines, c.spec.engine)};
+      lines[title] = PlotSeries{title, {}, {}, Style::LinePoints, engine_colour(c.spec.engine)};
+      lines[title].dash = 1 + lines_of_engine[c.spec.engine]++ % 5;
       order.push_back(title);
     }
     lines[title].x.push_back(c.spec.settings.at("iterations").get<double>());
@@ -165,7 +171,7 @@ std::vector<std::string> write_sweep_plots(const SweepReport& r, const fs::path&
       if (std::any_of(front.series.begin(), front.series.end(), [](const PlotSeries& p) { return !p.x.empty(); })) {
         specs.push_back(std::move(front));
       }
-      PlotSpec iterations = iterations_plot(r, scenes[s], stem, m, engines);
+      PlotSpec iterations = iterations_plot(r, scenes[s], stem, m);
       if (!iterations.series.empty()) specs.push_back(std::move(iterations));
     }
     if (const CellResult* c = convergence_cell(r, scenes[s])) specs.push_back(convergence_plot(*c, stem));

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "boxpile/sim/limits.hpp"
@@ -309,6 +310,86 @@ std::optional<std::string_view> closest_match(std::string_view word,
   return best;
 }
 
+namespace {
+
+// The code point of the UTF-8 sequence at s[i] and its length; length 0 for a byte that starts
+// no valid sequence (a stray continuation byte, a cut or overlong sequence).
+std::pair<char32_t, std::size_t> utf8_at(std::string_view s, std::size_t i) {
+  const auto b = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char lead = b(i);
+  if (lead < 0x80) return {lead, 1};
+  const std::size_t n = lead >= 0xF0 && lead <= 0xF4 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC2 && lead < 0xE0 ? 2 : 0;
+  if (n == 0 || i + n > s.size()) return {0, 0};
+  char32_t c = lead & (0x7F >> n);
+  for (std::size_t k = 1; k < n; ++k) {
+    if ((b(i + k) & 0xC0) != 0x80) return {0, 0};
+    c = (c << 6) | (b(i + k) & 0x3F);
+  }
+  if ((n == 3 && c < 0x800) || (n == 4 && (c < 0x10000 || c > 0x10FFFF)) || (c >= 0xD800 && c <= 0xDFFF)) return {0, 0};
+  return {c, n};
+}
+
+bool is_c1_control(char32_t c) { return c >= 0x80 && c <= 0x9F; }
+
+bool is_bidi_control(char32_t c) {
+  return c == 0x061C || c == 0x200E || c == 0x200F || (c >= 0x202A && c <= 0x202E) || (c >= 0x2066 && c <= 0x2069);
+}
+
+// Characters that draw nothing: white space, the non-breaking and zero-width spaces, joiners,
+// fillers, the byte order mark, and the bidirectional controls.
+bool is_invisible(char32_t c) {
+  return c == ' ' || c == '\t' || c == 0xA0 || c == 0xAD || c == 0x034F || c == 0x115F || c == 0x1160 ||
+         c == 0x180E || (c >= 0x2000 && c <= 0x200F) || (c >= 0x2028 && c <= 0x202F) ||
+         (c >= 0x205F && c <= 0x206F) || c == 0x3000 || c == 0x3164 || c == 0xFEFF || c == 0xFFA0 || is_bidi_control(c);
+}
+
+void append_escape(std::string& out, const char* format, unsigned value) {
+  char escaped[12];
+  std::snprintf(escaped, sizeof escaped, format, value);
+  out += escaped;
+}
+
+}  // namespace
+
+std::size_t whole_utf8_prefix(std::string_view s) {
+  // A cut sequence can only be among the last three bytes.
+  for (std::size_t back = 1; back <= 3 && back <= s.size(); ++back) {
+    const auto u = static_cast<unsigned char>(s[s.size() - back]);
+    if ((u & 0xC0) == 0x80) continue;  // a continuation byte: look further back
+    const std::size_t n = u >= 0xF0 ? 4 : u >= 0xE0 ? 3 : u >= 0xC0 ? 2 : 1;
+    return n > back ? s.size() - back : s.size();
+  }
+  return s.size();
+}
+
+std::string terminal_safe(std::string_view s, bool keep_layout) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size();) {
+    const auto [c, n] = utf8_at(s, i);
+    if (n == 0) {
+      append_escape(out, "\\x%02x", static_cast<unsigned char>(s[i]));
+      ++i;
+      continue;
+    }
+    if (c < 0x20 || c == 0x7F) {
+      const bool layout = c == '\n' || c == '\t' || c == '\r' || (c == 0x1B && s.substr(i, 3) == "\x1b[K");
+      if (keep_layout && layout) {
+        out.append(s.substr(i, c == 0x1B ? 3 : 1));
+        i += c == 0x1B ? 3 : 1;
+        continue;
+      }
+      append_escape(out, "\\x%02x", static_cast<unsigned>(c));
+    } else if (is_c1_control(c) || is_bidi_control(c)) {
+      append_escape(out, "\\u%04x", static_cast<unsigned>(c));
+    } else {
+      out.append(s.substr(i, n));
+    }
+    i += n;
+  }
+  return out;
+}
+
 std::string in_quotes(std::string_view s) {
   // At most kMaxQuotedBytes of the text, cut before a UTF-8 continuation byte, with the length of
   // the whole: a 10 MB key makes a line, not a 10 MB message.
@@ -319,20 +400,8 @@ std::string in_quotes(std::string_view s) {
     shown = s.substr(0, cut);
   }
   // Control characters are shown escaped, so that a message never moves the cursor, rings or
-  // clears the terminal that prints it.
-  std::string out;
-  out.reserve(shown.size() + 2);
-  out.push_back('"');
-  for (const char c : shown) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7f) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", u);
-      out += escaped;
-    } else {
-      out.push_back(c);
-    }
-  }
+  // clears the terminal that prints it, nor reorders the line.
+  std::string out = "\"" + terminal_safe(shown);
   out.push_back('"');
   if (shown.size() < s.size()) out += "... (" + std::to_string(s.size()) + " characters)";
   return out;
@@ -584,9 +653,25 @@ std::string read_name(const JsonNode& node) {
   if (s.empty()) node.fail("must not be empty");
   const bool blank = std::all_of(s.begin(), s.end(), [](char c) { return c == ' ' || c == '\t'; });
   if (blank) node.fail("must not be only white space");
-  for (const char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7f) node.fail("must not contain control characters, got " + in_quotes(s));
+  bool visible = false;
+  for (std::size_t i = 0; i < s.size();) {
+    const auto [c, n] = utf8_at(s, i);
+    if (n == 0) node.fail("must be UTF-8, got " + in_quotes(s));  // (nlohmann's parser already refuses it)
+    if (c < 0x20 || c == 0x7F || is_c1_control(c)) node.fail("must not contain control characters, got " + in_quotes(s));
+    visible = visible || !is_invisible(c);
+    i += n;
+  }
+  if (!visible) {
+    // Shown code point by code point: the name itself would print as nothing.
+    std::string shown;
+    for (std::size_t i = 0; i < s.size();) {
+      const auto [c, n] = utf8_at(s, i);
+      append_escape(shown, "U+%04X ", static_cast<unsigned>(c));
+      i += n;
+    }
+    shown.pop_back();
+    node.fail("must not be only invisible characters (white space, non-breaking or zero-width spaces, joiners), "
+              "got " + shown);
   }
   return s;
 }

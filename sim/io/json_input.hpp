@@ -39,7 +39,18 @@ std::size_t edit_distance(std::string_view a, std::string_view b);
 std::optional<std::string_view> closest_match(std::string_view word,
                                               std::span<const std::string_view> candidates);
 
-// `s` in double quotes, as names and keys appear in messages: control characters escaped, and cut
+// `s` with everything that could steer a terminal shown escaped: C0 control characters and DEL
+// as \xNN (kept when `keep_layout`: newline, tab, carriage return and the erase-line sequence
+// ESC [ K that progress lines use), C1 control characters (U+0080 to U+009F, one of which opens
+// an escape sequence) and the bidirectional controls (U+061C, U+200E, U+200F, U+202A to U+202E,
+// U+2066 to U+2069: they reorder what follows) as \uXXXX, and bytes that are no UTF-8 as \xNN.
+// Inside a JSON string \uXXXX reads back as the same character.
+std::string terminal_safe(std::string_view s, bool keep_layout = false);
+// How many leading bytes of `s` end on a whole UTF-8 sequence (a stream escapes those and keeps
+// the rest for its next write).
+std::size_t whole_utf8_prefix(std::string_view s);
+
+// `s` in double quotes, as names and keys appear in messages: terminal_safe(), and cut
 // to its first 200 bytes (with its length) when longer. Every message that quotes a user's text
 // (a name, a key, a flag's value, a path) quotes it with this.
 std::string in_quotes(std::string_view s);
@@ -130,7 +141,9 @@ double read_non_negative(const JsonNode& node);
 double read_positive(const JsonNode& node);
 // A number in [lo, hi]; `unit` (may be empty) for the message.
 double read_in_range(const JsonNode& node, double lo, double hi, std::string_view unit);
-// A name: non-empty, not only white space, no control characters (names are printed).
+// A name: non-empty, not only white space or other invisible characters (non-breaking and
+// zero-width spaces, joiners, a byte order mark), no control characters (C0 or C1; names are
+// printed).
 std::string read_name(const JsonNode& node);
 // {"normal": [x, y, z], "offset": d}: both optional (default: the plane z = 0, solid below).
 HalfSpace read_half_space(const JsonNode& node);

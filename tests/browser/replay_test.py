@@ -18,8 +18,8 @@ import time
 import png  # python3-png
 
 ENGINES = ["own", "ode", "bullet"]
-# The page's colours for the first three engines (validation/replay/viewer.js PALETTE).
-COLOURS = {"own": "#e8743b", "ode": "#3b7dd8", "bullet": "#2ca25f"}
+# Each engine's colour, read from the page's data (the engine registry's colours).
+COLOURS = {}
 # A pixel counts as an engine's when its hue is this close to the engine colour's (shading changes
 # brightness, not hue) and it is saturated enough not to be ground or background.
 HUE_TOLERANCE = 12 / 360
@@ -36,8 +36,8 @@ GROUND_VALUE = (0.35, 0.8)
 # The ground fills the lower part of every viewport: at least this fraction of its pixels.
 MIN_GROUND_FRACTION = 0.15
 WINDOW = (1200, 700)
-# The frame shown in the checks: the first frame after a step (frame 0 has no contact set yet).
-FRAME = 1
+# The frame shown in the checks: the start, which shows the first step's contact set.
+FRAME = 0
 # Tries of the playing page before its check fails (see main).
 PLAY_ATTEMPTS = 3
 
@@ -151,6 +151,10 @@ def main():
     with open(page, encoding="utf-8") as f:
         html = f.read()
     check(external_resources(html) == [], f"external resources in the page: {external_resources(html)[:5]}")
+    page_data = json.loads(re.search(r'<script id="replay-data" type="application/json">(.*?)</script>', html,
+                                     re.DOTALL).group(1))
+    COLOURS.update({e["name"]: e["colour"] for e in page_data["engines"]})
+    check(sorted(COLOURS) == sorted(ENGINES), f"the page's engines {sorted(COLOURS)}")
 
     url = "file://" + os.path.abspath(page) + f"#frame={FRAME}&mode=side"
     window = f"--window-size={WINDOW[0]},{WINDOW[1]}"

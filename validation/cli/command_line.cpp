@@ -14,6 +14,7 @@
 #include "boxpile/validation/cli/activity.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/engine_command_options.hpp"
+#include "boxpile/validation/cli/terminal_output.hpp"
 #include "boxpile/validation/collider_process.hpp"
 #include "boxpile/validation/detectors.hpp"
 #include "boxpile/validation/output_safety.hpp"
@@ -49,6 +50,35 @@ int parse_error(const CLI::App& app, const CLI::ParseError& e) {
   return boxpile::cli::kExitBadInput;
 }
 
+// Each command's own exit codes, shown by its --help (the top level's help gives the general rule).
+struct CommandExits {
+  const char* command;
+  const char* exits;
+};
+constexpr CommandExits kCommandExits[] = {
+    {"contacts", "0 the contact sets were printed (under --serve: the input ended); 2 bad input (the query, a "
+                 "flag, a detector name)"},
+    {"run", "0 the run ended (and --out was written); 1 a state became non-finite (nothing written) or anything "
+            "unexpected; 2 bad input (scene, flag, output location, a scene outside what an engine can take)"},
+    {"compare", "0 every engine ran to the end and the report was written; 1 an engine failed (the report says "
+                "where and why) or anything unexpected; 2 bad input (scene, flag, engine name, report directory)"},
+    {"sweep", "0 the report was written (cells that failed a check or went unstable are findings in it); 1 "
+              "anything unexpected; 2 bad input (the grid, a flag, the report directory)"},
+    {"sweep-merge", "0 the merged report was written; 2 bad input (a shard report that is missing, broken or of "
+                    "another grid; the report directory)"},
+    {"settings", "0 the tables were printed"},
+    {"stability", "0 our engine passed every check of every scene (other engines' failures are findings); 1 our "
+                  "engine failed a check, or anything unexpected; 2 bad input (a scene, a flag, an engine name, the "
+                  "report directory)"},
+    {"conform", "0 the collider is within every gate; 1 it is not (conform.md says where); 2 bad input (a flag, "
+                "the cases, the report directory) or a collider that dies, hangs or answers what the protocol "
+                "does not allow"},
+    {"scene", "0 the scene was written; 2 bad input (a kind, a size out of range or not the kind's, the output "
+              "location)"},
+    {"view", "0 the page was written; 2 bad input (a run file or report directory that is missing or broken, "
+             "the output location)"},
+};
+
 }  // namespace
 
 namespace boxpile::cli {
@@ -57,6 +87,8 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
   // Before anything else: Ctrl-C while the arguments are parsed or a scene is loaded exits 130
   // like one during a run.
   if (mode == CommandLineMode::Run) install_signal_handlers();
+  // Everything printed for people from here on is escaped (terminal_output.hpp).
+  const TerminalEscaping escaping;
   // The node-hosted engines join the registry before any help text or engine list is made.
   boxpile::add_node_engines();
   CLI::App app{"boxpile: a pile of boxes in our own simulator, checked against ODE and Bullet"};
@@ -81,6 +113,11 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
   add_conform_command(app, conform);
   ViewOptions view;
   add_view_command(app, view);
+  SceneOptions scene;
+  add_scene_command(app, scene);
+  for (const CommandExits& c : kCommandExits) {
+    app.get_subcommand(c.command)->footer(std::string("Exit codes: ") + c.exits + "; 130 interrupted (nothing written).");
+  }
   // The commands that run engines take engines over the protocol too.
   EngineCommandOptions engine_commands;
   for (const char* name : {"run", "compare", "stability", "sweep"}) {
@@ -125,6 +162,7 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
     if (app.got_subcommand("stability")) return run_stability_command(stability);
     if (app.got_subcommand("conform")) return run_conform_command(conform);
     if (app.got_subcommand("view")) return run_view(view);
+    if (app.got_subcommand("scene")) return run_scene_command(scene);
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "boxpile/validation/cli/run_limits.hpp"
+#include "boxpile/validation/scene_generator.hpp"
 
 namespace boxpile::cli {
 
@@ -41,7 +42,7 @@ void add_contacts_command(CLI::App& app, ContactsOptions& options);
 int run_contacts(const ContactsOptions& options);
 
 // `boxpile conform --collider CMD [--samples N] [--seed S] [--cases DIR] [--regimes LIST]
-// [--timeout S] [--tolerance float32|float64|VALUE] [--keep N] [--progress] --report DIR`: judges
+// [--timeout S] [--tolerance float32|float64|VALUE] [--keep N] [--progress] [--out DIR]`: judges
 // an outside collider through the line protocol (docs/conform.md). Exit 0 within the gates, 1 not,
 // 2 on bad input or a collider that dies, hangs or answers garbage.
 struct ConformOptions {
@@ -55,7 +56,7 @@ struct ConformOptions {
   std::string tolerance = "float64"; // float32, float64 or a relative tolerance
   int keep = 0;                      // failures saved per kind; add_conform_command sets kDefaultKeep
   bool progress = false;             // progress on stderr even when it is no terminal
-  std::string report;
+  std::string report = "boxpile-conform";
   std::size_t max_input_bytes = limits::kDefaultMaxInputBytes;
 };
 void add_conform_command(CLI::App& app, ConformOptions& options);
@@ -137,5 +138,18 @@ struct StabilityOptions {
 };
 void add_stability_command(CLI::App& app, StabilityOptions& options);
 int run_stability_command(const StabilityOptions& options);
+
+// `boxpile scene KIND [--base N] [--width N] [--height N] [--nx N] [--ny N] [--layers N] [--count N]
+// [--gap M] [--seed S] [--size M] [--mass KG] [--out FILE]`: a scene file of a pyramid, wall,
+// tower, grid, heap or dominoes (validation/scene_generator.hpp), checked by the loader, on stdout
+// or into FILE.
+struct SceneOptions {
+  std::string kind;
+  SceneSizes sizes;
+  std::optional<std::string> out;  // absent: stdout
+  const CLI::App* command = nullptr;  // to tell which size flags were given
+};
+void add_scene_command(CLI::App& app, SceneOptions& options);
+int run_scene_command(const SceneOptions& options);
 
 }  // namespace boxpile::cli

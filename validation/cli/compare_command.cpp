@@ -28,7 +28,7 @@ void add_compare_command(CLI::App& app, CompareOptions& options) {
                                                 "(report.json, report.md, SVG plots)");
   cmd->add_option("scene", options.scene, "Scene file (JSON, docs/scene-format.md)")->required();
   cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() +
-                      " (own: the scene's solver.method; default: " + engine_list(default_engines(&DefaultLists::compare)) + ")")->delimiter(',');
+                      " (own: the scene's solver.method; default: " + engine_list(default_engines(&DefaultLists::compare)) + ")")->delimiter(',')->allow_extra_args(false);
   add_time_options(*cmd, options.dt, options.duration);
   add_set_option(*cmd, options.set);
   add_report_option(*cmd, options.report, "");

@@ -99,6 +99,7 @@ void add_conform_command(CLI::App& app, ConformOptions& options) {
                   "no fixed cases)");
   cmd->add_option("--regimes", options.regimes, "Comma-separated regimes of the random pairs (default: all)")
       ->delimiter(',')
+      ->allow_extra_args(false)
       ->check(CLI::IsMember(regime_names()));
   cmd->add_option("--timeout", options.timeout, "Seconds the collider may take per answer, in [0.001, 86400]")
       ->capture_default_str();
@@ -119,7 +120,7 @@ void add_conform_command(CLI::App& app, ConformOptions& options) {
       ->capture_default_str();
   cmd->add_flag("--progress", options.progress,
                 "Show progress and the time left on stderr even when it is not a terminal (on a terminal it is shown anyway)");
-  add_report_option(*cmd, options.report, "conform")->required();
+  add_report_option(*cmd, options.report, "conform");
   add_input_limit_option(*cmd, options.max_input_bytes);
 }
 

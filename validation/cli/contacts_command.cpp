@@ -41,6 +41,25 @@ std::vector<std::string> detector_names() {
   return names;
 }
 
+// A detector name of detector_names(); an old spelling (bullet_multipoint) is refused with the
+// name it now has.
+CLI::Validator detector_name() {
+  std::string names;
+  for (const std::string& n : detector_names()) names += (names.empty() ? "" : ",") + n;
+  return CLI::Validator(
+      [](const std::string& name) -> std::string {
+        const std::vector<std::string> known = detector_names();
+        if (std::find(known.begin(), known.end(), name) != known.end()) return "";
+        try {
+          find_detector(name);
+        } catch (const UnknownDetector& e) {
+          return e.what();
+        }
+        return "";
+      },
+      "{" + names + "}");
+}
+
 // The detectors shown when none are named: every one, those that differ on box-plane queries
 // only when the query is box-plane.
 std::vector<std::string> default_detectors(const ContactQuery& query) {
@@ -173,16 +192,17 @@ void add_contacts_command(CLI::App& app, ContactsOptions& options) {
   cmd->add_flag("--reduce", options.reduce, "Reduce our box-box manifold to at most 4 points");
   cmd->add_option("--engines", options.engines,
                   "Comma-separated detectors to show (own-impulse and own-penalty are own: one detector; "
-                  "default: own, ode, bullet, and bullet_multipoint for a box-plane query); each is compared "
+                  "default: own, ode, bullet, and bullet-multipoint for a box-plane query); each is compared "
                   "with own when own is shown")
       ->delimiter(',')
-      ->check(CLI::IsMember(detector_names()));
+      ->allow_extra_args(false)
+      ->check(detector_name());
   cmd->add_option("--format", options.format, "Output: table (the default on a terminal) or json (when piped)")
       ->check(CLI::IsMember({kTable, kJson}));
   CLI::Option* serve_flag = cmd->add_flag(
       "--serve", options.serve, "Answer queries on stdin, one JSON line each, with one detector (docs/conform.md)");
   cmd->add_option("--engine", options.engine, "The detector that answers under --serve")
-      ->check(CLI::IsMember(detector_names()))
+      ->check(detector_name())
       ->needs(serve_flag)
       ->capture_default_str();
   add_input_limit_option(*cmd, options.max_input_bytes);

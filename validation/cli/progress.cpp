@@ -25,13 +25,33 @@ void StatusLine::draw(std::string_view text, bool done) {
   std::cerr.flush();
 }
 
+std::string duration_text(double seconds) {
+  char text[32];
+  if (seconds < 120) {
+    std::snprintf(text, sizeof text, "%.0f s", seconds);
+  } else if (seconds < 7200) {
+    std::snprintf(text, sizeof text, "%.0f min", seconds / 60);
+  } else {
+    std::snprintf(text, sizeof text, "%.1f h", seconds / 3600);
+  }
+  return text;
+}
+
+// A run's first estimate of its cost waits for this much of its time (the pace of its first steps).
+constexpr double kFirstEstimateSeconds = 1.0;
+
 void ProgressPrinter::operator()(const RunProgress& p) {
   using Clock = std::chrono::steady_clock;
   if (p.index != timed_index_) {
     timed_index_ = p.index;
     start_ = Clock::now();
+    estimated_ = false;
   }
-  if (!line_.due(p.index, p.fraction)) return;
+  const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+  const bool can_estimate = p.fraction > 0.0 && elapsed >= kFirstEstimateSeconds;
+  // On a terminal the first estimate is drawn as soon as there is one, before the next percent.
+  const bool first_estimate = line_.terminal() && can_estimate && !estimated_;
+  if (!line_.due(p.index, p.fraction) && !first_estimate) return;
   const bool done = p.fraction >= 1.0;
   std::string label = std::string(p.engine) + (p.note.empty() ? "" : " ") + std::string(p.note);
   label.resize(std::max<std::size_t>(label.size(), 24), ' ');
@@ -40,8 +60,13 @@ void ProgressPrinter::operator()(const RunProgress& p) {
                 static_cast<int>(100.0 * p.fraction));
   std::string line = text;
   if (done) {
-    std::snprintf(text, sizeof text, "  %.2f s", std::chrono::duration<double>(Clock::now() - start_).count());
+    std::snprintf(text, sizeof text, "  %.2f s", elapsed);
     line += text;
+  } else if (can_estimate) {
+    // The cost of the run estimated from its pace so far.
+    const double all = elapsed / p.fraction;
+    line += "  about " + duration_text(all - elapsed) + " left of " + duration_text(all);
+    estimated_ = true;
   }
   line_.draw(line, done);
 }

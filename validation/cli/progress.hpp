@@ -7,6 +7,9 @@
 
 namespace boxpile::cli {
 
+// "40 s", "12 min", "3.5 h": a duration as a person reads an estimate.
+std::string duration_text(double seconds);
+
 // One line per run (or cell) on stderr: rewritten in place on a terminal at each new whole
 // percent, written once when the run ends otherwise (a log stays readable).
 class StatusLine {
@@ -16,6 +19,7 @@ class StatusLine {
   bool due(int index, double fraction);
   // Draws the line; `done` (the run's end) finishes it with a newline.
   void draw(std::string_view text, bool done);
+  bool terminal() const { return terminal_; }
 
  private:
   bool terminal_;
@@ -32,7 +36,8 @@ struct RunProgress {
   double fraction = 0.0;
 };
 
-// A StatusLine per run: engine, note and percent, and at the end the run's wall time.
+// A StatusLine per run: engine, note, percent and the time left estimated from the pace so far
+// ("about 3.5 h left of 3.6 h"), and at the end the run's wall time.
 class ProgressPrinter {
  public:
   void operator()(const RunProgress& p);
@@ -40,6 +45,7 @@ class ProgressPrinter {
  private:
   StatusLine line_;
   int timed_index_ = -1;  // the run start_ belongs to
+  bool estimated_ = false;  // the run's line has shown an estimate
   std::chrono::steady_clock::time_point start_;
 };
 

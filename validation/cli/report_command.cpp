@@ -8,8 +8,8 @@ namespace boxpile::cli {
 CLI::Option* add_report_option(CLI::App& cmd, std::string& dir, std::string_view kind) {
   const std::string previous = kind.empty() ? "a previous report" : "a previous " + std::string(kind) + " report";
   return cmd
-      .add_option("--report", dir,
-                  "Report directory, replaced as a whole when the report is complete (created if absent; an "
+      .add_option("--out,--report", dir,
+                  "Report directory (--out, as every command names its output; --report is the same), replaced as a whole when the report is complete (created if absent; an "
                   "existing one must be empty or hold " + previous + ")")
       ->capture_default_str();
 }

@@ -116,6 +116,10 @@ void print_profile(const StepProfile& profile, long steps) {
   std::fflush(stdout);
 }
 
+// Before its first percent a long run tells its progress line every this many steps (which
+// estimates the run's cost after its first second).
+constexpr long kEarlyProgressSteps = 64;
+
 }  // namespace
 
 void add_run_command(CLI::App& app, RunOptions& options) {
@@ -195,9 +199,13 @@ int run_run(const RunOptions& options) {
   // step: run_loop polls it).
   ProgressPrinter progress;
   const long progress_every = std::max(1L, steps / 100);
-  if (steps >= kProgressMinSteps) {
+  if (record || steps >= kProgressMinSteps) {
     hooks.step = [&](const StepView& v) {
-      if (v.step == 0 || v.step % progress_every != 0) return;
+      if (record) recorder.first_step(v);
+      if (steps < kProgressMinSteps) return;
+      // Before the first percent too, so that a run of hours says so within its first second.
+      const bool early = v.step < progress_every && v.step % kEarlyProgressSteps == 0;
+      if (v.step == 0 || (v.step % progress_every != 0 && !early)) return;
       progress({options.engine, "", 0, 1, static_cast<double>(v.step) / static_cast<double>(steps)});
     };
   }
@@ -232,7 +240,11 @@ int run_run(const RunOptions& options) {
     doc["final"] = {{"t", loop.final_t}, {"bodies", bodies_json(states)}};
     doc["events"] = std::move(events);
     if (options.profile) doc["profile"] = profile_json(engine->solver_counters()->profile, loop.steps);
+    const std::size_t frames = recorder.recording().frames.t.size();
     write_json_file(doc, *out);
+    std::cout << "boxpile run: " << options.engine << " on " << scene.name << ", " << loop.steps << " steps, "
+              << frames << " frames recorded\nrun: " << std::filesystem::absolute(out->target()).lexically_normal().string()
+              << '\n';
   } else {
     std::vector<BodyContact> contacts;
     engine->contacts(contacts);

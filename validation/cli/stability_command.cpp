@@ -68,7 +68,7 @@ void add_stability_command(CLI::App& app, StabilityOptions& options) {
       "stability", "Run the catalogue of hard scenes in every engine and judge each run by the scene's checks "
                    "(stability.json, stability.md, plots of failing cells). Exit 0 when our engine passes every "
                    "scene, 1 when it fails one (the reference engines' failures are reported, never fatal)");
-  cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() + " (default: " + engine_list(default_engines(&DefaultLists::stability)) + ")")->delimiter(',');
+  cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() + " (default: " + engine_list(default_engines(&DefaultLists::stability)) + ")")->delimiter(',')->allow_extra_args(false);
   add_set_option(*cmd, options.set);
   cmd->add_option("--scenes", options.scenes, "Scene files or directories of them (default: fixtures/hard/)");
   cmd->add_flag("--tune", options.tune,

@@ -11,6 +11,7 @@
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/cli/activity.hpp"
 #include "boxpile/validation/cli/commands.hpp"
+#include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/cli/report_command.hpp"
 #include "boxpile/validation/data_directory.hpp"
 #include "boxpile/validation/engine_settings.hpp"
@@ -27,11 +28,6 @@ namespace fs = std::filesystem;
 
 // The grids installed with boxpile, under its data folder.
 constexpr const char* kInstalledGrids = "benchmarks/grids";
-
-std::string duration_text(double seconds) {
-  if (seconds < 120.0) return format_number(seconds, "%.0f s");
-  return format_number(seconds / 60.0, "%.1f min");
-}
 
 // One line per finished cell on stderr, with the time left estimated from the cells so far.
 void print_progress(const SweepProgress& p) {
@@ -107,7 +103,7 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
   CLI::App* merge = app.add_subcommand("sweep-merge", "Merge the reports of a sweep's shards into one report");
   merge->add_option("reports", options.merge_inputs, "Shard report directories (each holding sweep.json)")
       ->required();
-  merge->add_option("--report", options.report, "Merged report directory")->capture_default_str();
+  merge->add_option("--out,--report", options.report, "Merged report directory (--report is the same)")->capture_default_str();
   add_input_limit_option(*merge, options.limits.max_input_bytes);
 }
 

@@ -7,10 +7,9 @@
 (function () {
   'use strict';
 
-  // One colour per engine (hues far apart, told apart on screen and by the browser tests). Known
-  // engines keep theirs on every page; any other takes the next colour no engine of the page has.
-  var PALETTE = ['#e8743b', '#3b7dd8', '#2ca25f', '#9b59b6', '#d6336c', '#c9a227'];
-  var ENGINE_COLOUR = { 'own': 0, 'ode': 1, 'bullet': 2, 'own-impulse': 3, 'own-penalty': 4 };
+  // Each engine's colour comes with its data (the engine registry's, the same in every plot);
+  // data written before engines carried one draws them in this grey.
+  var NO_COLOUR = '#a5aa99';
   var BACKGROUND = 0x14171c;
   var GROUND = 0x9c9c94;
   var GRID = 0x84847c;
@@ -79,17 +78,6 @@
     var view = bytesOf(text), out = new Uint32Array(view.byteLength / 4);
     for (var i = 0; i < out.length; ++i) out[i] = view.getUint32(4 * i, true);
     return out;
-  }
-
-  function engineColours(names) {
-    var used = {}, next = 0;
-    names.forEach(function (n) { if (n in ENGINE_COLOUR) used[ENGINE_COLOUR[n]] = true; });
-    return names.map(function (n) {
-      if (n in ENGINE_COLOUR) return PALETTE[ENGINE_COLOUR[n]];
-      while (used[next % PALETTE.length] && next < 2 * PALETTE.length) ++next;
-      used[next % PALETTE.length] = true;
-      return PALETTE[next++ % PALETTE.length];
-    });
   }
 
   function readEngine(e, colour, bodies) {
@@ -243,8 +231,7 @@
     var data = JSON.parse($('replay-data').textContent);
     if (typeof THREE === 'undefined') throw new Error('three.js is missing from the page');
     var shapes = data.shapes, nBodies = shapes.bodies.length;
-    var colours = engineColours(data.engines.map(function (e) { return e.name; }));
-    var engines = data.engines.map(function (e, i) { return readEngine(e, colours[i], nBodies); });
+    var engines = data.engines.map(function (e) { return readEngine(e, e.colour || NO_COLOUR, nBodies); });
     if (engines.length === 0) throw new Error('no engine in the data');
     var frames = Math.max.apply(null, engines.map(function (e) { return e.frames; }));
     var clock = engines.filter(function (e) { return e.frames === frames; })[0];
