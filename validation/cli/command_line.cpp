@@ -11,6 +11,7 @@
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/validation/cli/accuracy_command.hpp"
 #include "boxpile/validation/cli/activity.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/engine_command_options.hpp"
@@ -81,9 +82,11 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
   add_conform_command(app, conform);
   ViewOptions view;
   add_view_command(app, view);
+  AccuracyOptions accuracy;
+  add_accuracy_command(app, accuracy);
   // The commands that run engines take engines over the protocol too.
   EngineCommandOptions engine_commands;
-  for (const char* name : {"run", "compare", "stability", "sweep"}) {
+  for (const char* name : {"run", "compare", "stability", "sweep", "accuracy"}) {
     add_engine_command_options(*app.get_subcommand(name), engine_commands);
   }
 
@@ -125,6 +128,7 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
     if (app.got_subcommand("stability")) return run_stability_command(stability);
     if (app.got_subcommand("conform")) return run_conform_command(conform);
     if (app.got_subcommand("view")) return run_view(view);
+    if (app.got_subcommand("accuracy")) return run_accuracy_command(accuracy);
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());
