@@ -24,11 +24,11 @@ constexpr double kAccuracyLogFloor = 1e-14;
 json finite_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 json optional_json(const std::optional<double>& x) { return x ? finite_or_null(*x) : json(nullptr); }
 
-std::string fmt(double x, const char* format = "%.3g") {
+std::string number_text(double x, const char* format = "%.3g") {
   if (std::isinf(x)) return "non-finite";
   return std::isnan(x) ? "—" : format_number(x, format);
 }
-std::string fmt(const std::optional<double>& x, const char* format = "%.3g") { return x ? fmt(*x, format) : "—"; }
+std::string number_text(const std::optional<double>& x, const char* format = "%.3g") { return x ? number_text(*x, format) : "—"; }
 
 // One colour per engine in every accuracy plot: its place in the registry.
 int engine_color(const std::string& engine) {
@@ -37,7 +37,7 @@ int engine_color(const std::string& engine) {
 }
 
 // A file stem for a scene name: letters, digits, '_' and '-'.
-std::string plot_stem(const std::string& name) {
+std::string scene_stem(const std::string& name) {
   std::string stem = name;
   for (char& ch : stem) {
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-') ch = '_';
@@ -45,7 +45,7 @@ std::string plot_stem(const std::string& name) {
   return stem;
 }
 
-json measures_json(const TruthMeasures& m) {
+json truth_measures_json(const TruthMeasures& m) {
   return {{"position", optional_json(m.position)},
           {"velocity", optional_json(m.velocity)},
           {"orientation", optional_json(m.orientation)},
@@ -67,7 +67,7 @@ json converged_json(const ConvergedTruth& t) {
 std::vector<PlotSpec> accuracy_plots(const AccuracyResult& r) {
   std::vector<PlotSpec> plots;
   for (const AccuracyScene& s : r.scenes) {
-    const std::string stem = plot_stem(s.name);
+    const std::string stem = scene_stem(s.name);
     PlotSpec by_dt, by_cost;
     by_dt.name = "error_dt_" + stem;
     by_dt.title = s.name + ": error against the time step (truth: " + std::string(truth_kind_name(s.truth)) + ")";
@@ -119,29 +119,29 @@ std::string accuracy_markdown(const AccuracyResult& r, const std::vector<std::st
           "µs per simulated s |\n|---|---|---|---|---|---|---|---|---|\n";
     for (const AccuracyEngine& e : s.engines) {
       for (const AccuracyCell& c : e.cells) {
-        md << "| " << e.engine << " | " << fmt(e.order, "%.2f") << " | " << fmt(c.dt, "%.6g") << " | x"
-           << c.iteration_scale << " | " << fmt(c.error) << " | " << fmt(c.measures.velocity) << " | "
-           << fmt(c.measures.orientation) << " | " << fmt(c.measures.trajectory) << " | "
-           << fmt(c.us_per_simulated_second, "%.0f") << " |\n";
+        md << "| " << e.engine << " | " << number_text(e.order, "%.2f") << " | " << number_text(c.dt, "%.6g") << " | x"
+           << c.iteration_scale << " | " << number_text(c.error) << " | " << number_text(c.measures.velocity) << " | "
+           << number_text(c.measures.orientation) << " | " << number_text(c.measures.trajectory) << " | "
+           << number_text(c.us_per_simulated_second, "%.0f") << " |\n";
       }
     }
     md << '\n';
     for (const AccuracyEngine& e : s.engines) {
       if (e.orders.empty()) continue;
       md << "- " << e.engine << "'s order by measure:";
-      for (const auto& [name, order] : e.orders) md << ' ' << name << ' ' << fmt(order, "%.2f");
+      for (const auto& [name, order] : e.orders) md << ' ' << name << ' ' << number_text(order, "%.2f");
       md << '\n';
     }
     for (const AccuracyEngine& e : s.engines) {
       if (!e.converged) continue;
       md << "- " << e.engine << "'s converged answer: steps";
-      for (double h : e.converged->steps) md << ' ' << fmt(h, "%.4g");
+      for (double h : e.converged->steps) md << ' ' << number_text(h, "%.4g");
       md << " s, settings " << e.converged->settings.dump() << "; "
-         << (e.converged->extrapolated ? "Richardson-extrapolated at order " + fmt(e.converged->order, "%.2f")
+         << (e.converged->extrapolated ? "Richardson-extrapolated at order " + number_text(e.converged->order, "%.2f")
                                        : std::string("not extrapolated (the references do not converge at a steady order)"))
-         << ", uncertainty " << fmt(e.converged->uncertainty) << " m\n";
+         << ", uncertainty " << number_text(e.converged->uncertainty) << " m\n";
     }
-    const std::string stem = plot_stem(s.name);
+    const std::string stem = scene_stem(s.name);
     for (const std::string& name : {"error_dt_" + stem, "error_cost_" + stem}) {
       if (std::find(rendered.begin(), rendered.end(), name) != rendered.end()) md << "\n![" << name << "](" << name << ".svg)\n";
     }
@@ -167,7 +167,7 @@ json accuracy_json(const AccuracyResult& r) {
                      {"iteration_scale", c.iteration_scale},
                      {"steps", c.steps},
                      {"finite", c.finite}};
-        if (s.truth == TruthKind::Analytic) cell["measures"] = measures_json(c.measures);
+        if (s.truth == TruthKind::Analytic) cell["measures"] = truth_measures_json(c.measures);
         cells.push_back(std::move(cell));
       }
       json ej = {{"engine", e.engine}, {"order", optional_json(e.order)}, {"cells", cells}};
@@ -199,9 +199,9 @@ std::string accuracy_summary(const AccuracyResult& r) {
     out << s.name << " (truth: " << truth_kind_name(s.truth) << ")\n";
     for (const AccuracyEngine& e : s.engines) {
       char head[64];
-      std::snprintf(head, sizeof head, "  %-12s order %-5s error", e.engine.c_str(), fmt(e.order, "%.2f").c_str());
+      std::snprintf(head, sizeof head, "  %-12s order %-5s error", e.engine.c_str(), number_text(e.order, "%.2f").c_str());
       out << head;
-      for (const AccuracyCell& c : e.cells) out << ' ' << fmt(c.error, "%.2e");
+      for (const AccuracyCell& c : e.cells) out << ' ' << number_text(c.error, "%.2e");
       out << " m\n";
     }
   }
