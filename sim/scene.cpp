@@ -60,3 +60,12 @@ double collision_event_speed(const Scene& scene, double dt) {
 }
 
 }  // namespace boxpile
+
+namespace boxpile {
+
+Vec3 TruthTrajectory::at(double t) const {
+  const double s = until ? std::min(t, *until) : t;
+  return start + velocity * s + 0.5 * acceleration * s * s;
+}
+
+}  // namespace boxpile

@@ -174,6 +174,51 @@ struct SceneChecks {
   double penetration = 0.01;
 };
 
+// What the scene's bodies do, known in closed form (docs/scene-format.md, "Truth"): what
+// `boxpile accuracy` and the tests measure every engine's error against. Bodies are named in the
+// file and resolved to scene indices by the loader.
+struct TruthPoint {  // a body's position (m) or velocity (m/s) at the end of the run
+  int body = 0;
+  Vec3 value = Vec3::Zero();
+};
+struct TruthOrientation {  // a body's orientation at the end of the run
+  int body = 0;
+  Quat orientation = Quat::Identity();
+};
+// position(t) = start + velocity s + acceleration s^2 / 2 with s = min(t, until): uniform
+// acceleration until `until`, then at rest there (a box sliding to a stop).
+struct TruthTrajectory {
+  int body = 0;
+  Vec3 start = Vec3::Zero();         // m (the body's start unless given)
+  Vec3 velocity = Vec3::Zero();      // m/s (the body's start velocity unless given)
+  Vec3 acceleration = Vec3::Zero();  // m/s^2
+  std::optional<double> until;       // s; unset: the whole run
+  Vec3 at(double t) const;
+};
+// After its first impact the body's centre rises to `height` (m, along -gravity, the highest
+// point of its first flight after the impact).
+struct TruthRebound {
+  int body = 0;
+  double height = 0.0;
+};
+struct SceneTruth {
+  std::vector<TruthPoint> final_positions;
+  std::vector<TruthPoint> final_velocities;
+  std::vector<TruthOrientation> final_orientations;
+  std::vector<TruthTrajectory> trajectories;
+  std::optional<TruthRebound> rebound;
+  // The duration (s) the final states are stated for: the scene's, as loaded. A run of another
+  // length cannot be measured against them (trajectories and rebounds hold at any length).
+  double duration = 0.0;
+  bool empty() const {
+    return final_positions.empty() && final_velocities.empty() && final_orientations.empty() &&
+           trajectories.empty() && !rebound;
+  }
+  bool has_final_states() const {
+    return !final_positions.empty() || !final_velocities.empty() || !final_orientations.empty();
+  }
+};
+
 struct Scene {
   std::string name;
   std::string note;    // free text: why the scene exists (fixtures say what they test)
@@ -189,6 +234,7 @@ struct Scene {
   TimeSettings time;
   bool allow_initial_overlap = false;
   SceneChecks checks;
+  SceneTruth truth;  // empty when the scene states none
   // A cap on work, not read from the file (the loader's LoadLimits, the command line's
   // --max-pairs): our World refuses a step whose broadphase finds more pairs than this.
   std::size_t max_pairs = limits::kDefaultMaxPairs;

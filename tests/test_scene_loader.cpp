@@ -790,3 +790,67 @@ TEST_CASE("the penalty method's keys load, and each method's keys are errors und
   CHECK_THAT(error_of(R"({"name": "x", "solver": {"method": "penalty", "substeps": 0}, )" + body),
              Catch::Contains("solver.substeps"));
 }
+
+// ---------------------------------------------------------------------------------------------
+// Truth
+
+TEST_CASE("a scene's truth loads: final states, trajectories, a rebound", "[scene][truth]") {
+  json scene = base_scene();
+  scene["truth"] = R"({
+    "final_positions": {"b0": [1, 2, 0.5]},
+    "final_velocities": {"b1": [0, 0, 0]},
+    "final_orientations": {"b0": [0, 0, 0, 2]},
+    "trajectories": {"b0": {"acceleration": [-1, 0, 0], "until": 0.5}, "b1": {"start": [0, 0, 2], "velocity": [1, 0, 0], "acceleration": [0, 0, -2]}},
+    "rebound": {"body": "b1", "height": 0.75}
+  })"_json;
+  const Scene s = parse_scene(scene.dump(), kSource);
+  REQUIRE(s.truth.final_positions.size() == 1);
+  CHECK(s.truth.final_positions[0].body == 0);
+  CHECK(s.truth.final_positions[0].value == Vec3(1, 2, 0.5));
+  REQUIRE(s.truth.final_velocities.size() == 1);
+  CHECK(s.truth.final_velocities[0].body == 1);
+  REQUIRE(s.truth.final_orientations.size() == 1);
+  CHECK_THAT(s.truth.final_orientations[0].orientation.z(), Catch::Matchers::WithinAbs(1.0, kTight));  // normalised
+  REQUIRE(s.truth.trajectories.size() == 2);
+  const TruthTrajectory& slide = s.truth.trajectories[0];
+  // Start and velocity default to the body's; held at rest after `until`.
+  CHECK(slide.start == Vec3(0, 0, 0.5));
+  CHECK(slide.velocity == Vec3::Zero());
+  CHECK(slide.at(0.5).isApprox(Vec3(-0.125, 0, 0.5), kTight));
+  CHECK(slide.at(2.0).isApprox(Vec3(-0.125, 0, 0.5), kTight));
+  const TruthTrajectory& fall = s.truth.trajectories[1];
+  CHECK(fall.body == 1);
+  CHECK(fall.at(1.0).isApprox(Vec3(1, 0, 1), kTight));
+  REQUIRE(s.truth.rebound);
+  CHECK(s.truth.rebound->body == 1);
+  CHECK(s.truth.rebound->height == 0.75);
+  CHECK(s.truth.duration == 1.0);
+  CHECK(parse_scene(base_scene().dump(), kSource).truth.empty());
+}
+
+TEST_CASE("a bad truth names the file and the field", "[scene][truth]") {
+  auto with_truth = [](json t) { return [t](json& s) { s["truth"] = t; }; };
+  run_cases({
+      {"unknown body", with_truth({{"final_positions", {{"bo", {0, 0, 0}}}}}), "truth.final_positions.bo",
+       "no body named \"bo\""},
+      {"not an object", with_truth({{"final_positions", {1, 2, 3}}}), "truth.final_positions",
+       "must be an object {BODY: ...}"},
+      {"a point of two numbers", with_truth({{"final_velocities", {{"b0", {0, 0}}}}}), "truth.final_velocities.b0",
+       "3"},
+      {"a misspelt form", with_truth({{"final_position", {{"b0", {0, 0, 0}}}}}), "truth",
+       "did you mean \"final_positions\"?"},
+      {"a trajectory without acceleration", with_truth({{"trajectories", {{"b0", {{"until", 1}}}}}}),
+       "truth.trajectories.b0", "missing required key \"acceleration\""},
+      {"a negative until", with_truth({{"trajectories", {{"b0", {{"acceleration", {0, 0, 0}}, {"until", -1}}}}}}),
+       "truth.trajectories.b0.until", "-1"},
+      {"a zero quaternion", with_truth({{"final_orientations", {{"b0", {0, 0, 0, 0}}}}}),
+       "truth.final_orientations.b0", "zero quaternion"},
+      {"a rebound of nobody", with_truth({{"rebound", {{"body", "b7"}, {"height", 1}}}}), "truth.rebound.body",
+       "no body named \"b7\""},
+      {"an empty truth", with_truth(json::object()), "truth", "states no truth"},
+      {"a fixed body", [](json& s) {
+         body(s, 0)["fixed"] = true;
+         s["truth"] = {{"final_positions", {{"b0", {0, 0, 0.5}}}}};
+       }, "truth.final_positions.b0", "is fixed"},
+  });
+}

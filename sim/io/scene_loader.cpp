@@ -380,6 +380,72 @@ SceneChecks read_checks(const JsonNode& node, const std::vector<BodyDesc>& bodie
   return c;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Truth
+
+// An object {BODY: value}: each key a body of the scene, each value read by `read` with the body's
+// index.
+template <class Read>
+void for_each_body_key(const JsonNode& node, const std::vector<BodyDesc>& bodies, Read&& read) {
+  if (!node.json().is_object()) node.fail("must be an object {BODY: ...} naming bodies of the scene");
+  for (const auto& item : node.json().items()) {
+    const JsonNode value = node.at(item.key());
+    int index = -1;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (bodies[i].name == item.key()) index = static_cast<int>(i);
+    }
+    if (index < 0) value.fail("no body named " + in_quotes(item.key()) + " in the scene");
+    if (bodies[static_cast<std::size_t>(index)].fixed) {
+      value.fail("body " + in_quotes(item.key()) + " is fixed: a truth about it says nothing");
+    }
+    read(value, index);
+  }
+}
+
+std::vector<TruthPoint> read_truth_points(const JsonNode& node, const std::vector<BodyDesc>& bodies) {
+  std::vector<TruthPoint> points;
+  for_each_body_key(node, bodies, [&](const JsonNode& v, int body) { points.push_back({body, json_input::read_vec3(v)}); });
+  return points;
+}
+
+TruthTrajectory read_truth_trajectory(const JsonNode& node, const BodyDesc& body, int index) {
+  node.expect_object({"start", "velocity", "acceleration", "until"});
+  TruthTrajectory t;
+  t.body = index;
+  t.start = body.frame.position;
+  t.velocity = body.velocity;
+  if (const auto s = node.find("start")) t.start = json_input::read_vec3(*s);
+  if (const auto v = node.find("velocity")) t.velocity = json_input::read_vec3(*v);
+  t.acceleration = json_input::read_vec3(node.at("acceleration"));
+  if (const auto u = node.find("until")) t.until = json_input::read_non_negative(*u);
+  return t;
+}
+
+SceneTruth read_truth(const JsonNode& node, const std::vector<BodyDesc>& bodies, const TimeSettings& time) {
+  node.expect_object({"final_positions", "final_velocities", "final_orientations", "trajectories", "rebound"});
+  SceneTruth t;
+  t.duration = time.duration;
+  if (const auto p = node.find("final_positions")) t.final_positions = read_truth_points(*p, bodies);
+  if (const auto v = node.find("final_velocities")) t.final_velocities = read_truth_points(*v, bodies);
+  if (const auto o = node.find("final_orientations")) {
+    for_each_body_key(*o, bodies, [&](const JsonNode& v, int body) {
+      t.final_orientations.push_back({body, json_input::read_orientation(v)});
+    });
+  }
+  if (const auto r = node.find("trajectories")) {
+    for_each_body_key(*r, bodies, [&](const JsonNode& v, int body) {
+      t.trajectories.push_back(read_truth_trajectory(v, bodies[static_cast<std::size_t>(body)], body));
+    });
+  }
+  if (const auto r = node.find("rebound")) {
+    r->expect_object({"body", "height"});
+    t.rebound = TruthRebound{read_body_name(r->at("body"), bodies), r->at("height").number()};
+  }
+  if (t.empty()) node.fail("states no truth: give at least one of final_positions, final_velocities, "
+                           "final_orientations, trajectories, rebound (or leave \"truth\" out)");
+  return t;
+}
+
 // Static friction is read by the penalty method's friction springs alone.
 void refuse_static_friction(const JsonNode& root) {
   auto refuse = [](const std::optional<JsonNode>& material) {
@@ -422,7 +488,7 @@ void check_penalty_settings(const JsonNode& root, const Scene& s) {
 
 Scene read_scene(const JsonNode& root, const LoadLimits& caps) {
   root.expect_object({"name", "note", "gravity", "ground", "material", "effects", "damping",
-                      "bodies", "solver", "collision", "time", "allow_initial_overlap", "checks"});
+                      "bodies", "solver", "collision", "time", "allow_initial_overlap", "checks", "truth"});
   Scene s;
   s.name = json_input::read_name(root.at("name"));
   s.note = root.string_or("note", "");
@@ -439,6 +505,7 @@ Scene read_scene(const JsonNode& root, const LoadLimits& caps) {
   if (s.solver.method == ContactSolver::Impulse) refuse_static_friction(root);
   if (s.solver.method == ContactSolver::Penalty) check_penalty_settings(root, s);
   if (const auto c = root.find("checks")) s.checks = read_checks(*c, s.bodies);
+  if (const auto t = root.find("truth")) s.truth = read_truth(*t, s.bodies, s.time);
   return s;
 }
 

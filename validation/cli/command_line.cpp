@@ -11,6 +11,7 @@
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/validation/cli/accuracy_command.hpp"
 #include "boxpile/validation/cli/activity.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/engine_command_options.hpp"
@@ -75,6 +76,9 @@ constexpr CommandExits kCommandExits[] = {
                 "does not allow"},
     {"scene", "0 the scene was written; 2 bad input (a kind, a size out of range or not the kind's, the output "
               "location)"},
+    {"accuracy", "0 the report was written (an engine that went non-finite at a step is a warning and a finding "
+                 "in it); 1 anything unexpected; 2 bad input (a scene, its truth, a flag, an engine name, a time "
+                 "step beyond the caps, the report directory)"},
     {"view", "0 the page was written; 2 bad input (a run file or report directory that is missing or broken, "
              "the output location)"},
 };
@@ -115,12 +119,14 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
   add_view_command(app, view);
   SceneOptions scene;
   add_scene_command(app, scene);
+  AccuracyOptions accuracy;
+  add_accuracy_command(app, accuracy);
   for (const CommandExits& c : kCommandExits) {
     app.get_subcommand(c.command)->footer(std::string("Exit codes: ") + c.exits + "; 130 interrupted (nothing written).");
   }
   // The commands that run engines take engines over the protocol too.
   EngineCommandOptions engine_commands;
-  for (const char* name : {"run", "compare", "stability", "sweep"}) {
+  for (const char* name : {"run", "compare", "stability", "sweep", "accuracy"}) {
     add_engine_command_options(*app.get_subcommand(name), engine_commands);
   }
 
@@ -163,6 +169,7 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
     if (app.got_subcommand("conform")) return run_conform_command(conform);
     if (app.got_subcommand("view")) return run_view(view);
     if (app.got_subcommand("scene")) return run_scene_command(scene);
+    if (app.got_subcommand("accuracy")) return run_accuracy_command(accuracy);
     std::cerr << "boxpile: no command given: comparing the engines on the default scene "
                  "(`boxpile --help` lists the commands)\n";
     return run_compare_command(default_compare_options());
