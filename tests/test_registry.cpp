@@ -407,6 +407,7 @@ TEST_CASE("Each engine's folder names its packages, and install-deps and its tit
   }
   CHECK(engines_checked == 7);  // ode, bullet, mujoco, dart, jolt, rapier, mujoco-wasm
   CHECK(npm_named == npm_dependencies.size());
+}
 
 // The time step is every engine's setting, declared once: listed first, recorded at the scene's
 // value, and when given it is the step the engine takes (its clock after three steps).
@@ -588,6 +589,7 @@ TEST_CASE("stability --tune finds a passing setting that --set reproduces", "[re
   CHECK(!spent.at("passed").get<bool>());
   CHECK(spent.at("out_of_budget").get<bool>());
   CHECK(spent.at("attempts") == 1);
+}
 
 // The half extents' range in docs/scene-format.md is the loader's (sim/limits.hpp), and the
 // integrator's default is said alike on every page that names it.

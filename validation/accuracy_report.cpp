@@ -30,12 +30,6 @@ std::string number_text(double x, const char* format = "%.3g") {
 }
 std::string number_text(const std::optional<double>& x, const char* format = "%.3g") { return x ? number_text(*x, format) : "—"; }
 
-// One colour per engine in every accuracy plot: its place in the registry.
-int engine_color(const std::string& engine) {
-  const std::vector<std::string> names = engine_names();
-  return static_cast<int>(std::find(names.begin(), names.end(), engine) - names.begin());
-}
-
 // A file stem for a scene name: letters, digits, '_' and '-'.
 std::string scene_stem(const std::string& name) {
   std::string stem = name;
@@ -83,7 +77,7 @@ std::vector<PlotSpec> accuracy_plots(const AccuracyResult& r) {
     for (const AccuracyEngine& e : s.engines) {
       for (int scale : r.settings.iteration_scales) {
         const std::string title = e.engine + (scale == 1 ? "" : " iterations x" + std::to_string(scale));
-        PlotSeries d{title, {}, {}, Style::LinePoints, engine_color(e.engine)};
+        PlotSeries d{title, {}, {}, Style::LinePoints, engine_colour(e.engine)};
         if (scale != r.settings.iteration_scales.front()) d.style = Style::Dashed;
         PlotSeries c = d;
         for (const AccuracyCell& cell : e.cells) {
