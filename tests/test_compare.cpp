@@ -286,7 +286,8 @@ TEST_CASE("an engine has one colour in a 2-engine and a 4-engine compare's plots
         if (s.title == engine) colours.insert(s.colour);
     std::vector<const Recording*> runs;
     for (const EngineRun& run : r.runs) runs.push_back(&run.recording);
-    for (const json& e : replay_data(scene.name, runs, {}).at("engines"))
+    const json data = replay_data(scene.name, runs, {});  // a range over a temporary's member would dangle
+    for (const json& e : data.at("engines"))
       if (e.at("name") == engine) colours.insert(e.at("colour").get<std::string>());
     return colours;
   };
