@@ -19,6 +19,7 @@
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/limits.hpp"
+#include "boxpile/sim/time_steps.hpp"
 #include "boxpile/sim/world.hpp"
 #include "boxpile/tests/support/work_dir.hpp"
 #include "boxpile/validation/compare.hpp"
@@ -593,6 +594,38 @@ TEST_CASE("stability --tune finds a passing setting that --set reproduces", "[re
 
 // The half extents' range in docs/scene-format.md is the loader's (sim/limits.hpp), and the
 // integrator's default is said alike on every page that names it.
+// A cell's wall-time limit stops the run after the step that passed it and fails the cell by a
+// check of its own ("finished": steps run against the scene's), while a cell within its limit
+// runs and is judged exactly as without one.
+TEST_CASE("stability's cell time limit stops a cell and fails its finished check", "[registry]") {
+  const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/hard/edge_drop.json");
+  StabilitySettings settings;
+  settings.engines = {"own"};
+  const StabilityCell whole = run_stability_cell(scene, "own", settings);
+  REQUIRE(whole.passed);
+  CHECK(!whole.out_of_time);
+  CHECK(whole.steps == step_count(scene.time));
+
+  settings.cell_time_limit = 3600.0;
+  const StabilityCell within = run_stability_cell(scene, "own", settings);
+  CHECK(!within.out_of_time);
+  CHECK(within.steps == whole.steps);
+  REQUIRE(within.checks.size() == whole.checks.size());
+  for (std::size_t i = 0; i < whole.checks.size(); ++i) CHECK(within.checks[i].value == whole.checks[i].value);
+
+  settings.cell_time_limit = 1e-9;  // passed by the first step: the run stops after it
+  const StabilityCell cut = run_stability_cell(scene, "own", settings);
+  CHECK(cut.out_of_time);
+  CHECK(cut.steps == 1);
+  CHECK(!cut.passed);
+  REQUIRE(!cut.checks.empty());
+  CHECK(cut.checks.front().name == "finished");
+  CHECK(!cut.checks.front().passed);
+  CHECK(cut.checks.front().value == 1.0);
+  CHECK(cut.checks.front().limit == static_cast<double>(whole.steps));
+  CHECK(describe(cut.checks.front()) == "finished 1 steps < " + std::to_string(whole.steps));
+}
+
 TEST_CASE("docs state the loader's half-extent range and the integrator's default", "[registry]") {
   const std::string docs = std::string(BOXPILE_FIXTURES_DIR) + "/../docs/";
   const std::string format = read(docs + "scene-format.md");

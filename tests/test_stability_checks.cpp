@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/rebound_tracker.hpp"
 #include "boxpile/validation/stability_checks.hpp"
 
 using namespace boxpile;
@@ -83,6 +84,26 @@ TEST_CASE("a bounce is measured from the first impact to the top of the rebound"
   CHECK(*m.measures().rebound == Approx(0.24));
   CHECK(find(m.evaluate(), "rebound").value == Approx(0.04));
   CHECK(find(m.evaluate(), "rebound").passed);
+}
+
+TEST_CASE("the rebound tracker finds a ballistic bounce's apex, e^2 h, and not a launch's rise", "[checks]") {
+  // A point thrown up at v0 from the ground, falling back and bouncing with restitution e: the
+  // first rise (before any fall) is not a bounce; the rise after the impact peaks at
+  // (e v_impact)^2 / (2 g). Sampled every dt, the apex is missed by at most g (dt/2)^2 / 2.
+  const double g = 9.81, v0 = 2.0, e = 0.5, dt = 1e-3;
+  const double t_impact = 2.0 * v0 / g, v_after = e * v0;
+  ReboundTracker tracker;
+  for (int k = 0; k * dt < t_impact + 2.0 * v_after / g; ++k) {
+    const double t = k * dt;
+    const double s = t < t_impact ? t : t - t_impact, v_start = t < t_impact ? v0 : v_after;
+    tracker.observe(v_start * s - 0.5 * g * s * s, v_start - g * s);
+    if (t < t_impact) CHECK_FALSE(tracker.apex());  // the launch's rise is not a bounce
+  }
+  REQUIRE(tracker.apex());
+  CHECK(tracker.done());
+  const double apex = v_after * v_after / (2.0 * g);  // 0.0510 m; the launch's rise was 0.204 m
+  CHECK(*tracker.apex() == Approx(apex).margin(0.5 * g * 0.25 * dt * dt));
+  CHECK(*tracker.apex() <= apex);
 }
 
 TEST_CASE("a body that passes a wall is caught, and a stopped run fails finiteness alone", "[checks]") {

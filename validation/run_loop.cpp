@@ -61,6 +61,11 @@ RunLoopResult run_loop(Engine& engine, double dt, long steps, long every, const 
       throw OutOfMemory(std::string(engine.name()) + ": step " + std::to_string(k) +
                         ": out of memory measuring or recording the frame");
     }
+    if (hooks.stop && k < steps && hooks.stop(StepView{engine, k, static_cast<double>(k) * dt, before, states})) {
+      if (last_frame < k) call(hooks.frame, k);
+      result.cut_short = true;
+      break;
+    }
   }
   result.wall_seconds = std::chrono::duration<double>(stepping).count();
   const std::optional<double> reported = engine.reported_seconds();

@@ -36,6 +36,9 @@ struct RunHooks {
   std::function<void(const StepView&)> step;
   // At the start, every `every` steps and after the last step.
   std::function<void(const StepView&)> frame;
+  // After each step's hooks: true ends the run there (RunLoopResult::cut_short), e.g. a cell's
+  // wall-time limit. Not asked at the start.
+  std::function<bool(const StepView&)> stop;
 };
 
 // An allocation failed inside a step or a hook: the message names the engine, the step and the
@@ -52,6 +55,7 @@ struct RunLoopResult {
   // Engine::reported_seconds()), else wall_seconds: the figure per-step costs are made of.
   double engine_seconds = 0.0;
   std::optional<NonFiniteStop> stopped;
+  bool cut_short = false;  // hooks.stop ended the run before its last step
   std::vector<BodyState> final_states;  // the last finite states
   double final_t = 0.0;  // s
 };

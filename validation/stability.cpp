@@ -64,13 +64,30 @@ StabilityCell run_stability_cell(const Scene& scene_file, std::string_view engin
     cell.energy.push_back(monitor.energy());
     cell.kinetic.push_back(monitor.kinetic());
   };
+  const Clock::time_point start = Clock::now();
+  if (settings.cell_time_limit > 0.0) {
+    hooks.stop = [&](const StepView&) {
+      return std::chrono::duration<double>(Clock::now() - start).count() > settings.cell_time_limit;
+    };
+  }
   const RunLoopResult loop = run_loop(*engine, scene.time.dt, steps, every, hooks);
   cell.steps = loop.steps;
+  cell.out_of_time = loop.cut_short;
   cell.wall_seconds = loop.wall_seconds;
   cell.us_per_step = cell.steps > 0 ? 1e6 * loop.engine_seconds / static_cast<double>(cell.steps) : 0.0;
   if (loop.stopped) monitor.stopped_non_finite();
   cell.measures = monitor.measures();
   cell.checks = monitor.evaluate();
+  if (cell.out_of_time) {
+    // The run is unfinished: a failed check of its own, beside the checks of the steps run.
+    SceneCheckResult finished;
+    finished.name = "finished";
+    finished.value = static_cast<double>(loop.steps);
+    finished.limit = static_cast<double>(steps);
+    finished.at_least = true;
+    finished.unit = "steps";
+    cell.checks.insert(cell.checks.begin(), finished);
+  }
   cell.passed = all_passed(cell.checks);
   return cell;
 }

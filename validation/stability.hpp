@@ -47,6 +47,11 @@ struct StabilitySettings {
   // `max_steps` steps.
   bool tune = false;
   double tune_budget = 60.0;
+  // `--cell-time-limit`: s of wall time a cell may step (0: no limit). A cell past it stops there
+  // and fails its "finished" check (steps run against the scene's); its other checks judge the
+  // steps that ran. For engines whose cost grows too fast for a scene (DART's pivoting LCP on a
+  // pile), so that the catalogue still ends and says so.
+  double cell_time_limit = 0.0;
   long max_steps = 10'000'000;
 };
 
@@ -71,7 +76,8 @@ struct StabilityCell {
   bool passed = false;
   std::vector<SceneCheckResult> checks;
   RunMeasures measures;
-  long steps = 0;  // steps run (fewer than the scene's when a state became NaN)
+  long steps = 0;  // steps run (fewer than the scene's when a state became NaN or time ran out)
+  bool out_of_time = false;  // stopped at settings.cell_time_limit
   double us_per_step = 0.0;
   double wall_seconds = 0.0;  // stepping only
   std::vector<double> t, energy, kinetic;  // recorded frames, s and J

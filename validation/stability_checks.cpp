@@ -50,8 +50,7 @@ void RunMonitor::observe(long step, const std::vector<BodyState>& states) {
     m_.energy_start = energy_now_;
     start_.clear();
     for (const BodyState& s : states) start_.push_back(s.position);
-    bounce_ = Bounce::Falling;
-    fell_ = false;
+    rebound_ = ReboundTracker{};
     side_margins_.assign(scene_.checks.stays_behind.size(), std::numeric_limits<double>::infinity());
   }
   m_.steps = step;
@@ -97,23 +96,8 @@ void RunMonitor::observe(long step, const std::vector<BodyState>& states) {
 void RunMonitor::observe_rebound(const std::vector<BodyState>& states) {
   const ReboundCheck& c = *scene_.checks.rebound;
   const BodyState& s = states[static_cast<std::size_t>(c.body)];
-  const double v_up = s.velocity.dot(up_);
-  const double height = s.position.dot(up_);
-  switch (bounce_) {
-    case Bounce::Falling:
-      if (v_up < 0.0) fell_ = true;
-      if (fell_ && v_up > 0.0) {
-        bounce_ = Bounce::Rising;
-        m_.rebound = height - c.rest_height;
-      }
-      break;
-    case Bounce::Rising:
-      m_.rebound = std::max(*m_.rebound, height - c.rest_height);
-      if (v_up < 0.0) bounce_ = Bounce::Done;
-      break;
-    case Bounce::Done:
-      break;
-  }
+  rebound_.observe(s.position.dot(up_) - c.rest_height, s.velocity.dot(up_));
+  m_.rebound = rebound_.apex();
 }
 
 std::vector<SceneCheckResult> RunMonitor::evaluate() const {

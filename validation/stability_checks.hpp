@@ -16,6 +16,7 @@
 #include "boxpile/sim/engine.hpp"
 #include "boxpile/sim/metrics.hpp"
 #include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/rebound_tracker.hpp"
 
 namespace boxpile {
 
@@ -80,10 +81,7 @@ class RunMonitor {
   Vec3 up_ = Vec3::UnitZ();
   RunMeasures m_;
   double energy_now_ = 0.0, kinetic_now_ = 0.0;
-  // Rebound tracking: the body has come down, then gone up (bounced), then its peak until it
-  // comes down again.
-  enum class Bounce { Falling, Rising, Done } bounce_ = Bounce::Falling;
-  bool fell_ = false;
+  ReboundTracker rebound_;  // the rebound check's body, its height above the rest height
   std::vector<double> side_margins_;  // per stays_behind check, m: the least n . x - offset so far
 };
 

@@ -148,6 +148,7 @@ json stability_json(const StabilityResult& r) {
                      {"checks", checks},
                      {"measures", measures_json(c.measures)},
                      {"steps", c.steps},
+                     {"out_of_time", c.out_of_time},
                      {"us_per_step", number(c.us_per_step)},
                      {"us_per_sim_s", number(c.us_per_sim_s())},
                      {"wall_seconds", number(c.wall_seconds)}});

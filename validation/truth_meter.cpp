@@ -42,23 +42,7 @@ void TruthMeter::observe(double t, const std::vector<BodyState>& states) {
   }
   if (!truth_.rebound) return;
   const BodyState& s = states[static_cast<std::size_t>(truth_.rebound->body)];
-  const double v_up = s.velocity.dot(up_);
-  const double height = s.position.dot(up_);
-  switch (bounce_) {
-    case Bounce::Falling:
-      if (v_up < 0.0) fell_ = true;
-      if (fell_ && v_up > 0.0) {
-        bounce_ = Bounce::Rising;
-        apex_ = height;
-      }
-      break;
-    case Bounce::Rising:
-      apex_ = std::max(*apex_, height);
-      if (v_up < 0.0) bounce_ = Bounce::Done;
-      break;
-    case Bounce::Done:
-      break;
-  }
+  rebound_.observe(s.position.dot(up_), s.velocity.dot(up_));
 }
 
 TruthMeasures TruthMeter::measures() const {
@@ -74,7 +58,7 @@ TruthMeasures TruthMeter::measures() const {
   if (!truth_.trajectories.empty()) m.trajectory = trajectory_;
   if (truth_.rebound) {
     // No bounce at all: the body's last height against the apex it should have reached.
-    const double reached = apex_ ? *apex_ : state(truth_.rebound->body).position.dot(up_);
+    const double reached = rebound_.apex() ? *rebound_.apex() : state(truth_.rebound->body).position.dot(up_);
     m.rebound = std::abs(reached - truth_.rebound->height);
   }
   return m;

@@ -9,6 +9,7 @@
 
 #include "boxpile/sim/engine.hpp"
 #include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/rebound_tracker.hpp"
 
 namespace boxpile {
 
@@ -47,10 +48,7 @@ class TruthMeter {
   std::vector<BodyState> last_;
   double t_ = 0.0;
   double trajectory_ = 0.0;
-  // The rebound: falling, then rising after the impact (highest point so far), then done.
-  enum class Bounce { Falling, Rising, Done } bounce_ = Bounce::Falling;
-  bool fell_ = false;
-  std::optional<double> apex_;
+  ReboundTracker rebound_;  // the truth's rebound body
 };
 
 // The angle (rad) of the rotation from `a` to `b`.

@@ -135,6 +135,7 @@ struct StabilityOptions {
   RunLimits limits;
   bool tune = false;          // --tune
   double tune_budget = 60.0;  // --tune-budget, s per cell
+  double cell_time_limit = 0.0;  // --cell-time-limit, s of stepping per cell (0: none)
 };
 void add_stability_command(CLI::App& app, StabilityOptions& options);
 int run_stability_command(const StabilityOptions& options);

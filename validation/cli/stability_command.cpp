@@ -77,6 +77,11 @@ void add_stability_command(CLI::App& app, StabilityOptions& options) {
   cmd->add_option("--tune-budget", options.tune_budget, "With --tune: seconds of wall time per cell, at most")
       ->check(CLI::Range(0.0, 86400.0))
       ->capture_default_str();
+  cmd->add_option("--cell-time-limit", options.cell_time_limit,
+                  "Seconds of wall time one cell may step (0: no limit); a cell past it stops and fails its "
+                  "\"finished\" check, the rest of its checks judging the steps that ran")
+      ->check(CLI::Range(0.0, 86400.0))
+      ->capture_default_str();
   add_report_option(*cmd, options.report, "stability");
   add_limit_options(*cmd, options.limits, false);
 }
@@ -89,6 +94,7 @@ int run_stability_command(const StabilityOptions& options) {
   settings.engine_settings = parse_set_options(options.set, settings.engines);
   settings.tune = options.tune;
   settings.tune_budget = options.tune_budget;
+  settings.cell_time_limit = options.cell_time_limit;
   settings.max_steps = options.limits.max_steps;
   std::vector<Scene> scenes;
   const std::vector<std::string> catalogue = catalogue_files({data_path("fixtures/hard").string()});
