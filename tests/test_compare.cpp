@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <set>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -25,6 +26,7 @@
 #include "boxpile/validation/report_directory.hpp"
 #include "boxpile/validation/stacks.hpp"
 #include "boxpile/validation/wire_check.hpp"
+#include "boxpile/tests/support/engine_scenes.hpp"
 #include "boxpile/tests/support/work_dir.hpp"
 
 using namespace boxpile;
@@ -353,5 +355,74 @@ TEST_CASE("compare's penetration plot holds each interval's deepest, its energy 
     for (std::size_t k = 0; k < total.y.size(); ++k) {
       CHECK(translational.y[k] + rotational.y[k] + potential.y[k] == Approx(total.y[k]).margin(1e-9));
     }
+  }
+}
+
+TEST_CASE("compare's energy plot marks impacts by kind, and its plots keep their key below", "[compare]") {
+  // A cube dropped onto a cube at rest (an impact between bodies), and a cube dropped onto the
+  // ground beside them (an impact with the ground).
+  Scene scene = empty_scene(Effects{}, true);
+  scene.bodies = {unit_box("low", Vec3(0, 0, 0.5)), unit_box("high", Vec3(0, 0, 2.0)),
+                  unit_box("side", Vec3(3, 0, 1.5))};
+  scene.time.duration = 0.6;
+  CompareSettings settings;
+  settings.engines = {"own", "ode"};
+  const CompareResult r = run_compare(scene, settings);
+  const std::vector<PlotSpec> plots = report_plots(r);
+  const PlotSpec& energy = plots.at(0);
+  REQUIRE(energy.name == "energy");
+  const json report = report_json(r);
+  for (const EngineRun& run : r.runs) {
+    INFO(run.engine);
+    std::map<std::string, std::vector<double>> times;  // kind: impact times
+    for (const ImpactEvent& e : run.events) times[impact_kind_name(impact_kind(e))].push_back(e.t);
+    REQUIRE(times["ground"].size() >= 1);
+    REQUIRE(times["bodies"].size() >= 1);
+    for (const char* kind : {"ground", "bodies"}) {
+      std::string title = run.engine;
+      title += std::string(kind) == "ground" ? " impact with the ground" : " impact between bodies";
+      const auto s = std::find_if(energy.series.begin(), energy.series.end(),
+                                  [&](const PlotSeries& p) { return p.title == title; });
+      REQUIRE(s != energy.series.end());
+      CHECK(s->x == times[kind]);
+      CHECK_FALSE(s->in_key);
+      CHECK(s->style == (std::string(kind) == "ground" ? PlotSeries::Style::Triangles : PlotSeries::Style::Points));
+      CHECK(s->colour == engine_colour(run.engine));
+    }
+    // report.json names each event's kind alike.
+    const json& events = report.at("engines").at(run.engine).at("events");
+    REQUIRE(events.size() == run.events.size());
+    for (std::size_t k = 0; k < events.size(); ++k)
+      CHECK(events[k].at("kind") == impact_kind_name(impact_kind(run.events[k])));
+  }
+  // The key: each engine's total once, each style once (in grey), nothing else of the energy.
+  std::vector<std::string> keyed;
+  for (const PlotSeries& s : energy.series)
+    if (s.in_key) keyed.push_back(s.title);
+  CHECK(keyed == std::vector<std::string>{"own", "ode"});
+  std::vector<std::string> styles;
+  for (const PlotSeries& k : energy.key) styles.push_back(k.title);
+  CHECK(styles == std::vector<std::string>{"translational", "rotational", "potential", "impact with the ground",
+                                           "impact between bodies"});
+
+  // The scripts put the key below the plot, at most kKeyColumns entries a row, the picture taller
+  // by a row's height per row: position_difference's 1 pair + 2 baselines + threshold = 4 entries,
+  // one row; energy's 2 totals + 5 styles = 7, two rows; series out of the key are untitled.
+  const fs::path dir = scratch("plot_layout");
+  for (const PlotSpec& p : plots) write_plot_files(dir, p);
+  const std::string difference = read(dir / "position_difference.gp");
+  CHECK_THAT(difference, Catch::Contains("set key outside below center horizontal maxcols 4"));
+  CHECK_THAT(difference, !Catch::Contains("right top"));
+  CHECK_THAT(difference, Catch::Contains("set terminal svg size 900,440 "));
+  const std::string energy_gp = read(dir / "energy.gp");
+  CHECK_THAT(energy_gp, Catch::Contains("set terminal svg size 900,460 "));
+  CHECK_THAT(energy_gp, Catch::Contains("NaN with points pt 9 ps 0.8 lc rgb '#555555' title 'impact with the ground'"));
+  CHECK_THAT(energy_gp, Catch::Contains("NaN with lines lw 1.2 dt 2 lc rgb '#555555' title 'translational'"));
+  std::size_t untitled = 0;
+  for (std::size_t at = energy_gp.find(" notitle"); at != std::string::npos; at = energy_gp.find(" notitle", at + 1)) ++untitled;
+  CHECK(untitled == 2 * 5);  // per engine: its two kinds of impact and its three parts
+  if (gnuplot_available()) {
+    render_plot(dir, "position_difference");
+    check_plot(dir, "position_difference");
   }
 }

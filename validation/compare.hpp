@@ -72,6 +72,12 @@ struct ImpactEvent {
   std::optional<double> impulse;  // N s
 };
 
+// What an impact struck: the ground, or another body. The energy plot marks the two alike in
+// every engine (a triangle, a circle) and report.json's events name it.
+enum class ImpactKind { Ground, Bodies };
+inline ImpactKind impact_kind(const ImpactEvent& e) { return e.body_b == kGround ? ImpactKind::Ground : ImpactKind::Bodies; }
+inline const char* impact_kind_name(ImpactKind k) { return k == ImpactKind::Ground ? "ground" : "bodies"; }
+
 // How well a body on a wire stayed on it through a run (every step measured).
 struct WireReport {
   std::string body;

@@ -60,6 +60,8 @@ std::string style_of(const PlotSeries& s) {
       return "with lines lw 1.2 dt 4 lc rgb '" + color + "'";
     case PlotSeries::Style::Points:
       return "with points pt 7 ps 0.5 lc rgb '" + color + "'";
+    case PlotSeries::Style::Triangles:
+      return "with points pt 9 ps 0.8 lc rgb '" + color + "'";
     case PlotSeries::Style::Crosses:
       return "with points pt 2 ps 0.9 lc rgb '" + color + "'";
     case PlotSeries::Style::LinePoints:
@@ -97,15 +99,20 @@ void write_plot_files(const fs::path& dir, const PlotSpec& spec) {
   }
   write_text(dir / (spec.name + ".dat"), data.str());
 
+  // The key's entries: the series it lists, the key's own entries and the horizontal line.
+  std::size_t entries = spec.key.size() + (spec.hline ? 1 : 0);
+  for (std::size_t b : blocks) entries += spec.series[b].in_key ? 1 : 0;
+  const std::size_t rows = (entries + kKeyColumns - 1) / kKeyColumns;
   std::ostringstream gp;
   gp << "# " << spec.title << ": rerun with `gnuplot " << spec.name << ".gp` in this directory.\n"
-     << "set terminal svg size 900,480 dynamic enhanced font 'Helvetica,13' background '#ffffff'\n"
+     << "set terminal svg size " << kPlotWidth << ',' << kPlotHeight + kKeyRowHeight * static_cast<int>(rows)
+     << " dynamic enhanced font 'Helvetica,13' background '#ffffff'\n"
      << "set output " << quoted(spec.name + ".svg") << '\n'
      << "set title " << quoted(spec.title) << " noenhanced\n"
      << "set xlabel " << quoted(spec.xlabel) << " noenhanced\n"
      << "set ylabel " << quoted(spec.ylabel) << " noenhanced\n"
      << "set grid lc rgb '#dddddd'\n"
-     << "set key outside right top noenhanced\n"
+     << "set key outside below center horizontal maxcols " << kKeyColumns << " noenhanced\n"
      << "set datafile missing 'NaN'\n";
   if (spec.log_x) gp << "set logscale x\nset format x '10^{%L}'\n";
   if (spec.log_y) gp << "set logscale y\nset format y '10^{%L}'\n";
@@ -117,7 +124,10 @@ void write_plot_files(const fs::path& dir, const PlotSpec& spec) {
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     const PlotSeries& s = spec.series[blocks[b]];
     parts.push_back(quoted(spec.name + ".dat") + " index " + std::to_string(b) + " using 1:2 " + style_of(s) +
-                    " title " + quoted(s.title));
+                    (s.in_key ? " title " + quoted(s.title) : std::string(" notitle")));
+  }
+  if (!parts.empty()) {
+    for (const PlotSeries& k : spec.key) parts.push_back("NaN " + style_of(k) + " title " + quoted(k.title));
   }
   if (spec.hline) {
     parts.push_back(number(*spec.hline) + " with lines lw 1 dt 3 lc rgb '#777777' title " + quoted(spec.hline_title));

@@ -16,7 +16,8 @@ namespace boxpile {
 std::string plot_colour(int k);
 
 struct PlotSeries {
-  enum class Style { Line, Dashed, Dotted, DashDot, Points, Crosses, LinePoints };
+  // Points are filled circles, Triangles filled triangles, Crosses crosses.
+  enum class Style { Line, Dashed, Dotted, DashDot, Points, Triangles, Crosses, LinePoints };
   std::string title;
   std::vector<double> x, y;
   Style style = Style::Line;
@@ -26,6 +27,9 @@ struct PlotSeries {
   // gnuplot's dash type of a Line or LinePoints series (1 solid, 2 dashed, 3 dotted, 4 dash-dot,
   // 5 dash-dot-dot): series of one colour told apart.
   int dash = 1;
+  // Whether the key lists the series (series drawn alike for every engine can leave it to one
+  // entry of PlotSpec::key that names the style).
+  bool in_key = true;
 };
 
 struct PlotSpec {
@@ -39,7 +43,15 @@ struct PlotSpec {
   std::vector<PlotSeries> series;
   bool log_x = false;  // values below log_floor are drawn at it, as on y
   // A log axis with values of exactly 0 says, in a note on the plot, where they are drawn.
+  // Entries of the key alone (no data): a style's meaning, e.g. "translational (dashed)" in grey.
+  std::vector<PlotSeries> key{};
 };
+
+// The key sits below the plot, at most this many entries a row, and the picture grows by a row's
+// height for each row, so that the plot keeps the whole width (a key at the side took up to half
+// of it) and its height.
+inline constexpr int kKeyColumns = 4;
+inline constexpr int kPlotWidth = 900, kPlotHeight = 420, kKeyRowHeight = 20;
 
 class PlotError : public std::runtime_error {
  public:

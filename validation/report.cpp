@@ -61,7 +61,7 @@ json engine_json(const CompareResult& r, const EngineRun& run, const Baseline& b
   json events = json::array();
   for (const ImpactEvent& e : run.events) {
     json ev = {{"t", e.t}, {"body_a", body_name(scene, e.body_a)}, {"body_b", body_name(scene, e.body_b)},
-               {"approach_speed", e.approach_speed}};
+               {"approach_speed", e.approach_speed}, {"kind", impact_kind_name(impact_kind(e))}};
     if (e.impulse) ev["impulse"] = *e.impulse;
     events.push_back(std::move(ev));
   }
@@ -288,6 +288,14 @@ std::string pair_line(const PairComparison& p, double threshold) {
   return s;
 }
 
+// An impact kind's mark on the energy plot and its entry in the key.
+PlotSeries::Style impact_style(ImpactKind k) {
+  return k == ImpactKind::Ground ? PlotSeries::Style::Triangles : PlotSeries::Style::Points;
+}
+std::string impact_kind_title(ImpactKind k) {
+  return k == ImpactKind::Ground ? "impact with the ground" : "impact between bodies";
+}
+
 std::string verdict_text(const PairComparison& p) {
   const std::string& verdict = p.verdict;
   if (verdict == "unstable") return p.unstable_engine + " is unstable (" + p.instability + "), the other is not";
@@ -333,9 +341,17 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
   std::vector<PlotSpec> plots;
 
   PlotSpec energy{"energy",
-                  "Energy: total (solid, impacts marked), translational (dashed), rotational (dotted), potential "
-                  "(dash-dot)",
+                  "Energy: total (solid, impacts marked by kind), translational (dashed), rotational (dotted), "
+                  "potential (dash-dot)",
                   "t (s)", "energy (J)", false, 1e-12, std::nullopt, "", {}};
+  // The parts and the impacts are drawn alike for every engine: the key names each style once, in
+  // grey, beside one entry per engine (its total).
+  const std::string key_grey = "#555555";
+  energy.key = {{"translational", {}, {}, Style::Dashed, key_grey},
+                {"rotational", {}, {}, Style::Dotted, key_grey},
+                {"potential", {}, {}, Style::DashDot, key_grey},
+                {impact_kind_title(ImpactKind::Ground), {}, {}, impact_style(ImpactKind::Ground), key_grey},
+                {impact_kind_title(ImpactKind::Bodies), {}, {}, impact_style(ImpactKind::Bodies), key_grey}};
   PlotSpec penetration{"penetration",
                        "Deepest penetration between any two bodies or a body and the ground, the most of each "
                        "interval between frames",
@@ -357,16 +373,22 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
     const EngineRun& run = r.runs[e];
     const std::string color = engine_colour(run.engine);
     energy.series.push_back({run.engine, run.recording.frames.t, run.recording.frames.energy, Style::Line, color});
-    PlotSeries impacts{run.engine + " impacts", {}, {}, Style::Points, color};
-    for (const ImpactEvent& ev : run.events) {
-      impacts.x.push_back(ev.t);
-      impacts.y.push_back(at_time(run.recording.frames.t, run.recording.frames.energy, ev.t));
+    // Each impact on the engine's total at its time, marked by its kind.
+    for (const ImpactKind kind : {ImpactKind::Ground, ImpactKind::Bodies}) {
+      PlotSeries impacts{run.engine + " " + impact_kind_title(kind), {}, {}, impact_style(kind), color};
+      impacts.in_key = false;
+      for (const ImpactEvent& ev : run.events) {
+        if (impact_kind(ev) != kind) continue;
+        impacts.x.push_back(ev.t);
+        impacts.y.push_back(at_time(run.recording.frames.t, run.recording.frames.energy, ev.t));
+      }
+      energy.series.push_back(std::move(impacts));
     }
-    energy.series.push_back(std::move(impacts));
     const FrameSeries& f = run.recording.frames;
     PlotSeries translational{run.engine + " translational", f.t, {}, Style::Dashed, color},
         rotational{run.engine + " rotational", f.t, f.rotational, Style::Dotted, color},
         potential{run.engine + " potential", f.t, {}, Style::DashDot, color};
+    translational.in_key = rotational.in_key = potential.in_key = false;
     for (std::size_t k = 0; k < f.t.size() && k < f.kinetic.size() && k < f.rotational.size() && k < f.energy.size(); ++k) {
       translational.y.push_back(f.kinetic[k] - f.rotational[k]);
       potential.y.push_back(f.energy[k] - f.kinetic[k]);

@@ -9,7 +9,8 @@
 
 namespace boxpile::cli {
 
-StatusLine::StatusLine() : terminal_(isatty(STDERR_FILENO) == 1) {}
+StatusLine::StatusLine(const ProgressOutput& out)
+    : stream_(out.stream ? out.stream : &std::cerr), terminal_(out.terminal.value_or(isatty(STDERR_FILENO) == 1)) {}
 
 bool StatusLine::due(int index, double fraction) {
   const int percent = static_cast<int>(100.0 * fraction);
@@ -21,8 +22,8 @@ bool StatusLine::due(int index, double fraction) {
 }
 
 void StatusLine::draw(std::string_view text, bool done) {
-  std::cerr << (terminal_ ? "\r" : "") << text << (done ? "\n" : "");
-  std::cerr.flush();
+  *stream_ << (terminal_ ? "\r" : "") << text << (done ? "\n" : "");
+  stream_->flush();
 }
 
 std::string duration_text(double seconds) {
@@ -37,17 +38,17 @@ std::string duration_text(double seconds) {
   return text;
 }
 
-// A run's first estimate of its cost waits for this much of its time (the pace of its first steps).
-constexpr double kFirstEstimateSeconds = 1.0;
+
+ProgressPrinter::ProgressPrinter(const ProgressOutput& out)
+    : line_(out), now_(out.now ? out.now : [] { return std::chrono::steady_clock::now(); }) {}
 
 void ProgressPrinter::operator()(const RunProgress& p) {
-  using Clock = std::chrono::steady_clock;
   if (p.index != timed_index_) {
     timed_index_ = p.index;
-    start_ = Clock::now();
+    start_ = now_();
     estimated_ = false;
   }
-  const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+  const double elapsed = std::chrono::duration<double>(now_() - start_).count();
   const bool can_estimate = p.fraction > 0.0 && elapsed >= kFirstEstimateSeconds;
   // On a terminal the first estimate is drawn as soon as there is one, before the next percent.
   const bool first_estimate = line_.terminal() && can_estimate && !estimated_;

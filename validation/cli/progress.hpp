@@ -2,6 +2,9 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
+#include <iosfwd>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -10,11 +13,19 @@ namespace boxpile::cli {
 // "40 s", "12 min", "3.5 h": a duration as a person reads an estimate.
 std::string duration_text(double seconds);
 
+// Where a progress line goes and the clock it reads: stderr, whether stderr is a terminal, and
+// the steady clock, unless given (tests give a stream, a terminal and a clock of their own).
+struct ProgressOutput {
+  std::ostream* stream = nullptr;
+  std::optional<bool> terminal;
+  std::function<std::chrono::steady_clock::time_point()> now;
+};
+
 // One line per run (or cell) on stderr: rewritten in place on a terminal at each new whole
 // percent, written once when the run ends otherwise (a log stays readable).
 class StatusLine {
  public:
-  StatusLine();
+  explicit StatusLine(const ProgressOutput& out = {});
   // Whether run `index` at `fraction` of its work needs its line drawn now.
   bool due(int index, double fraction);
   // Draws the line; `done` (the run's end) finishes it with a newline.
@@ -22,6 +33,7 @@ class StatusLine {
   bool terminal() const { return terminal_; }
 
  private:
+  std::ostream* stream_;
   bool terminal_;
   int index_ = -1;
   int percent_ = -1;
@@ -36,14 +48,19 @@ struct RunProgress {
   double fraction = 0.0;
 };
 
+// A run's first estimate of its cost waits for this much of its time (the pace of its first steps).
+inline constexpr double kFirstEstimateSeconds = 1.0;
+
 // A StatusLine per run: engine, note, percent and the time left estimated from the pace so far
 // ("about 3.5 h left of 3.6 h"), and at the end the run's wall time.
 class ProgressPrinter {
  public:
+  explicit ProgressPrinter(const ProgressOutput& out = {});
   void operator()(const RunProgress& p);
 
  private:
   StatusLine line_;
+  std::function<std::chrono::steady_clock::time_point()> now_;
   int timed_index_ = -1;  // the run start_ belongs to
   bool estimated_ = false;  // the run's line has shown an estimate
   std::chrono::steady_clock::time_point start_;

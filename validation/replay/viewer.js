@@ -2,8 +2,12 @@
 // three.js, one viewport per engine (cameras linked) or all engines overlaid, on one timeline.
 // The page reports its state on <body> for tests: data-state ("loading", "ready" or
 // "error: ..."), data-engines, data-frames, data-frame, data-contacts, data-mode, data-resources
-// (resources loaded from outside the page: 0), data-picked (the picked body's name) and
-// data-canvas (the 3D view: left,top,width,height).
+// (resources loaded from outside the page: 0), data-picked (the picked body's name),
+// data-canvas (the 3D view: left,top,width,height), data-framing (the share of the first
+// viewport's width and height that the bodies of the first frame cover through the fitted first
+// camera), data-contact-fill (each engine's contact colour), data-contact-pixels (a contact dot's
+// diameter at the fitted camera's target) and data-energy-cursor (the energy graph's cursor on the
+// timeline, 0 to 1).
 (function () {
   'use strict';
 
@@ -20,16 +24,33 @@
   // faces apart. Together they stay below 1 on a lit face, so no colour clips to white.
   var AMBIENT = 0.55;
   var SUN = 0.5;
-  // Contacts are drawn in the engine's colour darkened to this fraction, so they stand out on it.
-  var CONTACT_SHADE = 0.45;
-  // Contact dots, in screen pixels (the same at any distance).
-  var DOT_PIXELS = 7;
+  // Body edges are drawn in the engine's colour darkened to this fraction.
+  var EDGE_SHADE = 0.45;
+  // Contacts are drawn in the engine's colour mixed this far toward white, a light tint that
+  // stands out on the engine's own boxes however dark, and each dot has a dark rim, which stands
+  // out on the light ground.
+  var CONTACT_TINT = 0.85;
+  var CONTACT_RIM = '#0b0d10';
+  // A contact dot's diameter: this fraction of the median body's size as seen at the camera's
+  // target (so it follows the scene and the zoom), kept within the pixels below so that it stays
+  // readable far away and does not hide the box near by; the share of its radius taken by its rim.
+  var DOT_FRACTION = 0.14;
+  var DOT_PIXELS = [8, 20];
+  var RIM_SHARE = 0.3;
   // An arrow head's radius and length, as fractions of the arrow's base length.
   var HEAD_RADIUS = 0.22;
   var HEAD_LENGTH = 0.45;
   // Vertical field of view, degrees; the first view leaves this much margin around the scene.
   var FOV = 40;
-  var FIT_MARGIN = 1.05;
+  var FIT_MARGIN = 1.08;
+  // A fixed body counts in the first view only within this many times the moving bodies' extent
+  // around them (a fixed floor slab of 100 m would leave the boxes on it a few pixels).
+  var FIXED_REACH = 1.0;
+  // The energy graph on the timeline: its drawing's size (stretched to the timeline's width) and
+  // the margin above and below the lines.
+  var GRAPH_WIDTH = 1000;
+  var GRAPH_HEIGHT = 100;
+  var GRAPH_MARGIN = 8;
   // Opacity of bodies when engines are overlaid.
   var OVERLAY_OPACITY = 0.45;
   // Floats per body state and per contact point (the packing of validation/replay_data.cpp).
@@ -146,20 +167,70 @@
     return { box: box, typical: sizes.length ? sizes[Math.floor(sizes.length / 2)] : 0.5 };
   }
 
-  // The camera distance along `direction` from the box's centre at which the whole box is in view.
-  function fitDistance(box, direction, fov, aspect) {
+  // The corners of every box of every body at the first frame (of the first engine: every engine
+  // starts from the scene's poses). Fixed bodies count only near the moving ones (FIXED_REACH).
+  function firstFramePoints(data, engine) {
+    var moving = [], fixed = [], q = new THREE.Quaternion();
+    data.shapes.bodies.forEach(function (b, i) {
+      var s = i * STATE_FLOATS, st = engine.states;
+      var at = new THREE.Vector3(st[s], st[s + 1], st[s + 2]);
+      var turn = new THREE.Quaternion(st[s + 4], st[s + 5], st[s + 6], st[s + 3]);
+      b.boxes.forEach(function (x) {
+        var h = x.half_extents, o = x.offset, r = x.orientation;
+        q.set(r[1], r[2], r[3], r[0]);
+        for (var k = 0; k < 8; ++k) {
+          var p = new THREE.Vector3(k & 1 ? h[0] : -h[0], k & 2 ? h[1] : -h[1], k & 4 ? h[2] : -h[2]).applyQuaternion(q);
+          (b.fixed ? fixed : moving).push(p.add(new THREE.Vector3(o[0], o[1], o[2])).applyQuaternion(turn).add(at));
+        }
+      });
+    });
+    if (moving.length === 0) return fixed;
+    var box = new THREE.Box3().setFromPoints(moving), reach = box.getSize(new THREE.Vector3()).multiplyScalar(FIXED_REACH);
+    var near = new THREE.Box3(box.min.clone().sub(reach), box.max.clone().add(reach));
+    return moving.concat(fixed.map(function (x) { return near.clampPoint(x, new THREE.Vector3()); }));
+  }
+
+  // The camera's right and up for a view along -direction (z up).
+  function viewAxes(direction) {
     var forward = direction.clone().negate(), right = new THREE.Vector3().crossVectors(forward, new THREE.Vector3(0, 0, 1));
     if (right.lengthSq() < 1e-12) right.set(1, 0, 0);
     right.normalize();
-    var upv = new THREE.Vector3().crossVectors(right, forward);
-    var tanV = Math.tan(fov * Math.PI / 360), tanH = tanV * aspect, centre = box.getCenter(new THREE.Vector3());
-    var distance = 0;
-    for (var k = 0; k < 8; ++k) {
-      var c = new THREE.Vector3(k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y, k & 4 ? box.max.z : box.min.z).sub(centre);
-      var depth = c.dot(direction);  // toward the camera
-      distance = Math.max(distance, depth + Math.abs(c.dot(right)) / tanH, depth + Math.abs(c.dot(upv)) / tanV);
-    }
+    return { right: right, up: new THREE.Vector3().crossVectors(right, forward) };
+  }
+
+  // The camera distance along `direction` from `centre` at which every point is in view.
+  function fitDistance(points, centre, direction, fov, aspect) {
+    var axes = viewAxes(direction), tanV = Math.tan(fov * Math.PI / 360), tanH = tanV * aspect, distance = 0;
+    points.forEach(function (x) {
+      var c = x.clone().sub(centre), depth = c.dot(direction);  // toward the camera
+      distance = Math.max(distance, depth + Math.abs(c.dot(axes.right)) / tanH, depth + Math.abs(c.dot(axes.up)) / tanV);
+    });
     return distance;
+  }
+
+  // The extent of the points on the screen through `camera`: [xmin, xmax, ymin, ymax] in normalized
+  // device coordinates (-1 to 1).
+  function screenExtent(points, camera) {
+    var e = [Infinity, -Infinity, Infinity, -Infinity];
+    points.forEach(function (x) {
+      var v = x.clone().project(camera);
+      e = [Math.min(e[0], v.x), Math.max(e[1], v.x), Math.min(e[2], v.y), Math.max(e[3], v.y)];
+    });
+    return e;
+  }
+
+  // A round dot with a dark rim, as a texture for the contact points.
+  function dotTexture(fill) {
+    var size = 64, c = document.createElement('canvas');
+    c.width = c.height = size;
+    var g = c.getContext('2d');
+    [[CONTACT_RIM, 1], [fill, 1 - RIM_SHARE]].forEach(function (ring) {
+      g.beginPath();
+      g.arc(size / 2, size / 2, (size / 2 - 1) * ring[1], 0, 2 * Math.PI);
+      g.fillStyle = ring[0];
+      g.fill();
+    });
+    return new THREE.CanvasTexture(c);
   }
 
   function addGround(scene, ground, bounds) {
@@ -193,7 +264,9 @@
   // contact points, normal shafts and arrow heads, in buffers sized for its largest frame.
   function buildEngine(engine, shapes, arrowBase) {
     var colour = new THREE.Color(engine.colour);
-    var dark = colour.clone().multiplyScalar(CONTACT_SHADE);
+    var dark = colour.clone().multiplyScalar(EDGE_SHADE);
+    var tint = colour.clone().lerp(new THREE.Color(0xffffff), CONTACT_TINT);
+    engine.contactFill = '#' + tint.getHexString();
     engine.group = new THREE.Group();
     engine.edgeMaterial = new THREE.LineBasicMaterial({ color: dark, transparent: true });
     engine.materials = [];
@@ -210,16 +283,17 @@
     var pointGeometry = new THREE.BufferGeometry();
     pointGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * n), 3));
     engine.points = new THREE.Points(pointGeometry, new THREE.PointsMaterial({
-      color: dark, size: DOT_PIXELS, sizeAttenuation: false, depthTest: false }));
+      map: dotTexture(engine.contactFill), size: DOT_PIXELS[0], sizeAttenuation: false, alphaTest: 0.5, depthTest: false }));
     var shaftGeometry = new THREE.BufferGeometry();
     shaftGeometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6 * n), 3));
-    engine.shafts = new THREE.LineSegments(shaftGeometry, new THREE.LineBasicMaterial({ color: dark, depthTest: false }));
+    engine.shafts = new THREE.LineSegments(shaftGeometry, new THREE.LineBasicMaterial({ color: tint, depthTest: false }));
     engine.heads = new THREE.InstancedMesh(new THREE.ConeBufferGeometry(HEAD_RADIUS * arrowBase, HEAD_LENGTH * arrowBase, 10),
-      new THREE.MeshBasicMaterial({ color: dark, depthTest: false }), n);
+      new THREE.MeshBasicMaterial({ color: tint, depthTest: false }), n);
     engine.contactGroup = new THREE.Group();
-    [engine.points, engine.shafts, engine.heads].forEach(function (o) {
+    // The dots last, over their arrows.
+    [engine.shafts, engine.heads, engine.points].forEach(function (o, k) {
       o.frustumCulled = false;
-      o.renderOrder = 10;
+      o.renderOrder = 10 + k;
       engine.contactGroup.add(o);
     });
     engine.group.add(engine.contactGroup);
@@ -255,28 +329,49 @@
     var bounds = sceneBounds(data, engines);
     if (shapes.ground) addGround(scene, shapes.ground, bounds);
     addWires(scene, shapes);
-    var arrowBase = ARROW_BASE_FRACTION * bounds.typical;
+    var arrowBase = ARROW_BASE_FRACTION * bounds.typical, dotSize = DOT_FRACTION * bounds.typical;
     engines.forEach(function (e) { buildEngine(e, shapes, arrowBase); scene.add(e.group); });
+    var firstPoints = firstFramePoints(data, engines[0]);
 
     var camera = new THREE.PerspectiveCamera(FOV, 1, 0.01, 1000);
     camera.up.set(0, 0, 1);
     var controls = new THREE.OrbitControls(camera, canvas);
     controls.enableDamping = false;
-    // The first camera: the whole run in view from VIEW_DIRECTION, or what the address asks for
-    // (camera=x,y,z and target=x,y,z).
-    function resetCamera() {
-      var centre = bounds.box.getCenter(new THREE.Vector3());
+    // The bodies of the first frame filling the first viewport, seen from VIEW_DIRECTION: fitted
+    // about the centre of their box, then centred on their picture on the screen (which
+    // perspective shifts) and fitted again.
+    function fitCamera() {
       var direction = new THREE.Vector3().fromArray(VIEW_DIRECTION).normalize();
-      var v = viewports()[0];
-      var distance = FIT_MARGIN * fitDistance(bounds.box, direction, camera.fov, v.w / Math.max(1, v.h));
-      camera.position.copy(centre).addScaledVector(direction, distance);
+      var v = viewports()[0], aspect = v.w / Math.max(1, v.h), axes = viewAxes(direction);
+      var centre = new THREE.Box3().setFromPoints(firstPoints).getCenter(new THREE.Vector3());
+      camera.aspect = aspect;
+      camera.updateProjectionMatrix();
+      for (var pass = 0; ; ++pass) {
+        var distance = FIT_MARGIN * fitDistance(firstPoints, centre, direction, camera.fov, aspect);
+        camera.position.copy(centre).addScaledVector(direction, distance);
+        camera.lookAt(centre);
+        camera.updateMatrixWorld();
+        if (pass === 2) break;
+        var e = screenExtent(firstPoints, camera), tanV = Math.tan(camera.fov * Math.PI / 360);
+        centre.addScaledVector(axes.right, 0.5 * (e[0] + e[1]) * distance * tanV * aspect)
+          .addScaledVector(axes.up, 0.5 * (e[2] + e[3]) * distance * tanV);
+      }
       controls.target.copy(centre);
+    }
+    // The first camera: fitCamera's, or what the address asks for (camera=x,y,z and target=x,y,z).
+    // Until the user moves it, a fitted camera is fitted again whenever the first viewport's shape
+    // changes (the window resized, the page laid out again, the mode switched): `fittedAspect`.
+    var fittedAspect = null;
+    function resetCamera() {
+      fitCamera();
+      fittedAspect = camera.aspect;
       var asked = function (key) {
         var xyz = (hash.get(key) || '').split(',').map(Number);
         return xyz.length === 3 && xyz.every(isFinite) ? new THREE.Vector3().fromArray(xyz) : null;
       };
       if (asked('target')) controls.target.copy(asked('target'));
       if (asked('camera')) camera.position.copy(asked('camera'));
+      if (asked('target') || asked('camera')) fittedAspect = null;
       var size = bounds.box.getSize(new THREE.Vector3()).length();
       camera.near = size / 1000;
       camera.far = size * 100;
@@ -299,11 +394,20 @@
       });
     }
 
+    // A contact dot's diameter in pixels through the camera in viewport `v`.
+    function dotPixels(v) {
+      var seen = dotSize * v.h / (2 * camera.position.distanceTo(controls.target) * Math.tan(camera.fov * Math.PI / 360));
+      return Math.max(DOT_PIXELS[0], Math.min(DOT_PIXELS[1], seen));
+    }
+
     function render() {
-      var w = canvas.clientWidth, h = canvas.clientHeight;
+      var w = canvas.clientWidth, h = canvas.clientHeight, first = viewports()[0];
+      if (fittedAspect !== null && Math.abs(first.w / Math.max(1, first.h) - fittedAspect) > 1e-9) resetCamera();
       if (canvas.width !== Math.floor(w * renderer.getPixelRatio()) || canvas.height !== Math.floor(h * renderer.getPixelRatio())) {
         renderer.setSize(w, h, false);
       }
+      var dot = dotPixels(first);
+      engines.forEach(function (e) { e.points.material.size = dot * renderer.getPixelRatio(); });
       renderer.setScissorTest(true);
       viewports().forEach(function (v) {
         engines.forEach(function (e) { e.group.visible = v.engines.indexOf(e) >= 0; });
@@ -383,6 +487,7 @@
         energyText.push('<span class="swatch" style="background:' + e.colour + '"></span>' + e.name + ' ' +
           (energy === null ? '-' : energy.toFixed(3) + ' J') + (state.contacts ? ', ' + e.counts[k] + ' contacts' : ''));
       });
+      moveEnergyCursor();
       $('slider').value = String(state.frame);
       $('time').textContent = 't = ' + clock.t[state.frame].toFixed(4) + ' s  (frame ' + state.frame + ' of ' + (frames - 1) + ')';
       $('energy').innerHTML = 'energy (kinetic + potential): ' + energyText.join(' &nbsp; ');
@@ -505,6 +610,7 @@
       slider.max = String(frames - 1);
       slider.addEventListener('input', function () { setPlaying(false); showFrame(Number(slider.value)); });
       controls.addEventListener('change', render);
+      controls.addEventListener('start', function () { fittedAspect = null; });
       window.addEventListener('resize', render);
       document.addEventListener('keydown', function (ev) {
         if (ev.target.tagName === 'INPUT' && ev.target.type !== 'checkbox' && ev.key !== ' ') return;
@@ -518,6 +624,50 @@
     }
 
     var duration = clock.t[frames - 1] - clock.t[0];
+    function timelineX(t) { return duration > 0 ? (t - clock.t[0]) / duration : 0; }
+
+    // Each engine's total energy over the run, a line in its colour on the timeline, all on one
+    // scale, with a cursor at the frame shown.
+    var SVG = 'http://www.w3.org/2000/svg', cursor = null;
+    function drawEnergyGraph() {
+      var svg = $('energy-graph'), lo = Infinity, hi = -Infinity;
+      engines.forEach(function (e) {
+        e.energy.forEach(function (x) { if (x !== null && isFinite(x)) { lo = Math.min(lo, x); hi = Math.max(hi, x); } });
+      });
+      if (!(hi >= lo)) { lo = 0; hi = 1; }
+      var span = hi > lo ? hi - lo : 1;
+      svg.setAttribute('viewBox', '0 0 ' + GRAPH_WIDTH + ' ' + GRAPH_HEIGHT);
+      svg.setAttribute('preserveAspectRatio', 'none');
+      engines.forEach(function (e) {
+        var points = [];
+        for (var k = 0; k < e.frames; ++k) {
+          var x = e.energy[k];
+          if (x === null || !isFinite(x)) continue;
+          var y = GRAPH_HEIGHT - GRAPH_MARGIN - (GRAPH_HEIGHT - 2 * GRAPH_MARGIN) * (x - lo) / span;
+          points.push((GRAPH_WIDTH * timelineX(e.t[k])).toFixed(1) + ',' + y.toFixed(1));
+        }
+        var line = document.createElementNS(SVG, 'polyline');
+        line.setAttribute('points', points.join(' '));
+        line.setAttribute('stroke', e.colour);
+        line.setAttribute('data-engine', e.name);
+        line.setAttribute('class', 'energy-line');
+        svg.appendChild(line);
+      });
+      cursor = document.createElementNS(SVG, 'line');
+      cursor.setAttribute('id', 'energy-cursor');
+      cursor.setAttribute('y1', '0');
+      cursor.setAttribute('y2', String(GRAPH_HEIGHT));
+      svg.appendChild(cursor);
+      $('energy-range').textContent = 'energy on the timeline: ' + lo.toFixed(2) + ' to ' + hi.toFixed(2) + ' J';
+    }
+    function moveEnergyCursor() {
+      if (!cursor) return;
+      var x = (GRAPH_WIDTH * timelineX(clock.t[state.frame])).toFixed(1);
+      cursor.setAttribute('x1', x);
+      cursor.setAttribute('x2', x);
+      body.setAttribute('data-energy-cursor', timelineX(clock.t[state.frame]).toFixed(4));
+    }
+
     function frameAt(t) {
       var best = 0;
       for (var f = 0; f < frames; ++f) if (Math.abs(clock.t[f] - t) < Math.abs(clock.t[best] - t)) best = f;
@@ -534,7 +684,7 @@
       data.marks.forEach(function (m) {
         var div = document.createElement('div');
         div.className = 'mark';
-        div.style.left = (duration > 0 ? 100 * (m.t - clock.t[0]) / duration : 0) + '%';
+        div.style.left = 100 * timelineX(m.t) + '%';
         div.title = m.label;
         div.addEventListener('click', function () { setPlaying(false); showFrame(frameAt(m.t)); });
         $('marks').appendChild(div);
@@ -573,11 +723,24 @@
       body.setAttribute('data-resources', String(performance.getEntriesByType('resource').length));
       var rect = canvas.getBoundingClientRect();
       body.setAttribute('data-canvas', [rect.left, rect.top, rect.width, rect.height].map(Math.round).join(','));
+      // Through the fitted first camera (the address may have moved the camera shown): what the
+      // bodies of the first frame cover, and a contact dot's diameter at the target.
+      var position = camera.position.clone(), target = controls.target.clone();
+      fitCamera();
+      var e = screenExtent(firstPoints, camera), v = viewports()[0];
+      body.setAttribute('data-framing', ((e[1] - e[0]) / 2).toFixed(3) + ',' + ((e[3] - e[2]) / 2).toFixed(3));
+      body.setAttribute('data-contact-pixels', dotPixels(v).toFixed(1));
+      body.setAttribute('data-contact-fill', engines.map(function (x) { return x.contactFill; }).join(','));
+      body.setAttribute('data-contact-rim', CONTACT_RIM);
+      camera.position.copy(position);
+      controls.target.copy(target);
+      controls.update();
       body.setAttribute('data-state', 'ready');
     }
 
     bindControls();
     showLabels();
+    drawEnergyGraph();
     applyAddress();
     reportReady();
     if (hash.get('play') === '1') setPlaying(true);
