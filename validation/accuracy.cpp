@@ -289,6 +289,13 @@ AccuracyResult run_accuracy(const std::vector<Scene>& scenes, const AccuracySett
         }
       }
     }
+    if (settings.outcomes.starts > 0) {
+      std::vector<OutcomeEntry> entries;
+      for (const std::string& engine : settings.engines) entries.push_back({engine, engine, settings_of(engine)});
+      OutcomeSettings o = settings.outcomes;
+      if (settings.progress) o.progress = [&](std::string_view what) { settings.progress(scene.name + " outcomes: " + std::string(what)); };
+      as.outcomes = run_outcomes(scene, entries, o);
+    }
     result.scenes.push_back(std::move(as));
   }
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

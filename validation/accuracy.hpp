@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/outcomes.hpp"
 #include "boxpile/validation/truth_meter.hpp"
 
 namespace boxpile {
@@ -35,6 +36,9 @@ struct AccuracySettings {
   std::optional<TruthKind> truth;
   std::map<std::string, nlohmann::json> engine_settings;  // {engine: {key: value}} (--set)
   int repetitions = 3;  // timed runs per cell, interleaved; the least counts
+  // Outcome statistics over perturbed starts per scene, at the scene's own time step (none when
+  // outcomes.starts is 0): for chaotic scenes, where the distribution of outcomes is the truth.
+  OutcomeSettings outcomes;
   std::function<void(std::string_view what)> progress;  // before each run
 };
 
@@ -76,6 +80,7 @@ struct AccuracyScene {
   std::string name;
   TruthKind truth = TruthKind::Analytic;
   std::vector<AccuracyEngine> engines;
+  std::optional<OutcomeStatistics> outcomes;  // when settings.outcomes.starts > 0
 };
 
 struct AccuracyResult {

@@ -140,6 +140,7 @@ std::string accuracy_markdown(const AccuracyResult& r, const std::vector<std::st
       if (std::find(rendered.begin(), rendered.end(), name) != rendered.end()) md << "\n![" << name << "](" << name << ".svg)\n";
     }
     md << '\n';
+    if (s.outcomes) md << outcomes_markdown(*s.outcomes);
   }
   for (const std::string& n : notes) md << "Note: " << n << "\n\n";
   return md.str();
@@ -173,7 +174,11 @@ json accuracy_json(const AccuracyResult& r) {
       if (e.converged) ej["converged"] = converged_json(*e.converged);
       engines.push_back(std::move(ej));
     }
-    scenes.push_back({{"scene", s.path}, {"name", s.name}, {"truth", truth_kind_name(s.truth)}, {"engines", engines}});
+    scenes.push_back({{"scene", s.path},
+                      {"name", s.name},
+                      {"truth", truth_kind_name(s.truth)},
+                      {"engines", engines},
+                      {"outcomes", s.outcomes ? outcomes_json(*s.outcomes) : json(nullptr)}});
   }
   return {{"scenes", scenes},
           {"repetitions", r.settings.repetitions},
@@ -197,6 +202,11 @@ std::string accuracy_summary(const AccuracyResult& r) {
       out << head;
       for (const AccuracyCell& c : e.cells) out << ' ' << number_text(c.error, "%.2e");
       out << " m\n";
+    }
+    if (s.outcomes) {
+      for (const OutcomePair& p : s.outcomes->pairs) {
+        out << "  outcomes over " << s.outcomes->settings.starts << " starts, " << p.a << " vs " << p.b << ": " << p.verdict() << '\n';
+      }
     }
   }
   return out.str();

@@ -514,6 +514,11 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
       result.contacts.push_back(std::move(c));
     }
   }
+  if (settings.outcomes.starts > 0) {
+    std::vector<OutcomeEntry> entries;
+    for (const std::string& name : names) entries.push_back({name, name, settings.settings_of(name)});
+    result.outcomes = run_outcomes(scene, entries, settings.outcomes);
+  }
   return result;
 }
 

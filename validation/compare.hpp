@@ -20,6 +20,7 @@
 #include "boxpile/sim/metrics.hpp"
 #include "boxpile/sim/scene.hpp"
 #include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/outcomes.hpp"
 #include "boxpile/validation/recording.hpp"
 #include "boxpile/validation/stability_checks.hpp"
 #include "boxpile/validation/stacks.hpp"
@@ -54,6 +55,9 @@ struct CompareSettings {
   // Frames spread evenly over the run (the last at the end) at which contact sets are checked,
   // besides the frame of the deepest penetration.
   int contact_check_frames = 4;
+  // Outcome statistics over perturbed starts (validation/outcomes.hpp): `outcomes.starts` runs per
+  // engine after the compared runs; none when 0.
+  OutcomeSettings outcomes;
   // Called at each recorded frame of each run.
   std::function<void(const CompareProgress&)> progress;
   // The settings given for `engine` ({} when none).
@@ -216,6 +220,7 @@ struct CompareResult {
   std::vector<Baseline> baselines;  // one per engine, in the same order
   std::vector<PairComparison> pairs;
   std::vector<ContactFrameCheck> contacts;
+  std::optional<OutcomeStatistics> outcomes;  // when settings.outcomes.starts > 0
 };
 
 // Runs the scene in each engine (then again from the perturbed start), one after the other (ODE's

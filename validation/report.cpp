@@ -333,7 +333,8 @@ json report_json(const CompareResult& r) {
           {"start_stacks", start_stacks},
           {"engines", engines},
           {"pairs", pairs},
-          {"contacts", contacts}};
+          {"contacts", contacts},
+          {"outcomes", r.outcomes ? outcomes_json(*r.outcomes) : json(nullptr)}};
 }
 
 std::vector<PlotSpec> report_plots(const CompareResult& r) {
@@ -486,6 +487,10 @@ void write_md_pairs(std::ostream& md, const CompareResult& r) {
         "explains it.\n\n";
 }
 
+void write_md_outcomes(std::ostream& md, const CompareResult& r) {
+  if (r.outcomes) md << outcomes_markdown(*r.outcomes);
+}
+
 void write_md_plots(std::ostream& md, const std::vector<std::string>& plots) {
   if (plots.empty()) return;
   md << "## Plots\n\n";
@@ -566,6 +571,7 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
   write_md_engines(md, r);
   write_md_stacks(md, r);
   write_md_pairs(md, r);
+  write_md_outcomes(md, r);
   write_md_plots(md, plots);
   write_md_largest(md, r);
   write_md_contacts(md, r);
@@ -578,6 +584,11 @@ std::string summary_table(const CompareResult& r) {
   os << "scene " << r.scene.name << ": " << r.steps << " steps of " << dt_text(r.scene.time.dt) << '\n'
      << plain_table(engine_header(r, ""), engine_rows(r));
   for (const PairComparison& p : r.pairs) os << "  " << pair_line(p, r.settings.position_threshold) << '\n';
+  if (r.outcomes) {
+    os << "outcomes over " << r.outcomes->settings.starts << " perturbed starts (" << fmt(r.outcomes->settings.perturbation)
+       << " m):\n";
+    for (const OutcomePair& p : r.outcomes->pairs) os << "  " << p.a << " vs " << p.b << ": " << p.verdict() << '\n';
+  }
   return os.str();
 }
 

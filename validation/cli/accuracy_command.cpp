@@ -46,6 +46,7 @@ void add_accuracy_command(CLI::App& app, AccuracyOptions& options) {
   add_set_option(*cmd, options.set);
   add_report_option(*cmd, options.report, "accuracy");
   add_limit_options(*cmd, options.limits, false);
+  add_starts_options(*cmd, options.starts);
 }
 
 int run_accuracy_command(const AccuracyOptions& options) {
@@ -80,6 +81,7 @@ int run_accuracy_command(const AccuracyOptions& options) {
     throw UsageError("--repetitions: must be in [1, 100], got " + std::to_string(options.repetitions));
   }
   settings.repetitions = options.repetitions;
+  settings.outcomes = outcome_settings(options.starts);
 
   std::vector<Scene> scenes;
   std::vector<std::filesystem::path> inputs;
@@ -98,6 +100,7 @@ int run_accuracy_command(const AccuracyOptions& options) {
     if (settings.truth.value_or(scene.truth.empty() ? TruthKind::Converged : TruthKind::Analytic) == TruthKind::Converged) {
       checked.push_back(*std::min_element(settings.steps.begin(), settings.steps.end()) / 8.0);
     }
+    if (settings.outcomes.starts > 0) checked.push_back(scene.time.dt);  // the outcome runs' step
     for (double dt : checked) {
       Scene at = scene_at_step(scene, dt);
       apply_time_options(at, dt, std::nullopt, options.limits);

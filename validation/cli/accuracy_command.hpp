@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "boxpile/validation/cli/run_limits.hpp"
+#include "boxpile/validation/cli/starts_options.hpp"
 
 namespace boxpile::cli {
 
@@ -23,6 +24,7 @@ struct AccuracyOptions {
   std::vector<std::string> set;
   std::string report = "boxpile-accuracy";
   RunLimits limits;
+  StartsOptions starts;  // outcome statistics over perturbed starts, at each scene's own step
 };
 void add_accuracy_command(CLI::App& app, AccuracyOptions& options);
 int run_accuracy_command(const AccuracyOptions& options);

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "boxpile/validation/cli/run_limits.hpp"
+#include "boxpile/validation/cli/starts_options.hpp"
 #include "boxpile/validation/scene_generator.hpp"
 
 namespace boxpile::cli {
@@ -92,6 +93,7 @@ struct CompareOptions {
   std::vector<std::string> set;      // "ENGINE.KEY=VALUE" (the prefix optional when one engine runs)
   std::string report = "boxpile-report";
   RunLimits limits;
+  StartsOptions starts;  // outcome statistics over perturbed starts
 };
 void add_compare_command(CLI::App& app, CompareOptions& options);
 int run_compare_command(const CompareOptions& options);

@@ -9,6 +9,7 @@
 #include "boxpile/validation/compare.hpp"
 #include "boxpile/validation/engine_settings.hpp"
 #include "boxpile/validation/data_directory.hpp"
+#include "boxpile/validation/output_safety.hpp"
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/report.hpp"
 
@@ -33,6 +34,7 @@ void add_compare_command(CLI::App& app, CompareOptions& options) {
   add_set_option(*cmd, options.set);
   add_report_option(*cmd, options.report, "");
   add_limit_options(*cmd, options.limits, false);
+  add_starts_options(*cmd, options.starts);
 }
 
 int run_compare_command(const CompareOptions& options) {
@@ -40,6 +42,7 @@ int run_compare_command(const CompareOptions& options) {
   if (!options.engines.empty()) settings.engines = options.engines;
   check_engines(settings.engines, "--engines");
   settings.engine_settings = parse_set_options(options.set, settings.engines);
+  settings.outcomes = outcome_settings(options.starts);
   // Before the run (before even loading): a report directory that cannot be written fails now,
   // not after minutes.
   ReportDirectory dir(options.report, {options.scene}, kReportJson);
@@ -60,8 +63,17 @@ int run_compare_command(const CompareOptions& options) {
   settings.progress = [&progress](const CompareProgress& p) {
     progress({p.engine, p.baseline ? "(perturbed start)" : "", p.index, p.total, p.fraction});
   };
+  StatusLine starts_line;
+  int start_runs = 0;
+  settings.outcomes.progress = [&](std::string_view what) {
+    throw_if_interrupted();
+    ++start_runs;
+    if (starts_line.due(start_runs, 0.0)) starts_line.draw("  outcomes: " + std::string(what), false);
+  };
   std::cerr << "boxpile compare: " << scene.name << " (" << scene.source << "), " << step_count(scene.time)
-            << " steps per run, each engine twice\n";
+            << " steps per run, each engine twice";
+  if (settings.outcomes.starts > 0) std::cerr << " and from " << settings.outcomes.starts << " perturbed starts";
+  std::cerr << '\n';
   const std::optional<CompareResult> result = run_and_report(
       dir, [&] { return run_compare(scene, settings); }, write_report, summary_table, kReportMarkdown);
   if (!result) return kExitInterrupted;
