@@ -109,9 +109,19 @@ Penetration measure_penetration(const std::vector<RigidBody>& bodies, const std:
   return worst;
 }
 
+Vec3 down_direction(const Vec3& gravity) {
+  return gravity.norm() > 0.0 ? Vec3(gravity.normalized()) : Vec3(-Vec3::UnitZ());
+}
+
+std::pair<Vec3, Vec3> across_directions(const Vec3& down) {
+  const Vec3 helper = std::abs(down.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 u = down.cross(helper).normalized();
+  return {u, down.cross(u)};
+}
+
 double measure_levitation(const std::vector<RigidBody>& bodies, const std::optional<HalfSpace>& ground,
                           const Vec3& gravity, double rest_speed) {
-  const Vec3 down = gravity.norm() > 0.0 ? Vec3(gravity.normalized()) : Vec3(-Vec3::UnitZ());
+  const Vec3 down = down_direction(gravity);
   const PlacedBodies p(bodies);
   const std::size_t n = bodies.size();
 

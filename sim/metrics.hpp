@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "boxpile/sim/body.hpp"
@@ -10,6 +11,11 @@
 #include "boxpile/sim/scene.hpp"
 
 namespace boxpile {
+
+// The unit direction of `gravity`, -z without gravity (every measure of "up" reads this).
+Vec3 down_direction(const Vec3& gravity);
+// Two unit directions across `down` (a unit vector), perpendicular to each other and to it.
+std::pair<Vec3, Vec3> across_directions(const Vec3& down);
 
 struct Energy {
   double translational = 0.0;  // J, sum 1/2 m |v|^2

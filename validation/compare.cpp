@@ -243,11 +243,7 @@ EngineRun run_engine(const Scene& scene, std::string_view engine, const CompareS
 
 Scene perturbed_scene(const Scene& scene, double distance) {
   Scene s = scene;
-  const Vec3 down = scene.gravity.norm() > 0.0 ? Vec3(scene.gravity.normalized()) : Vec3(-Vec3::UnitZ());
-  // Two directions across gravity.
-  const Vec3 helper = std::abs(down.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
-  const Vec3 u = down.cross(helper).normalized();
-  const Vec3 v = down.cross(u);
+  const auto [u, v] = across_directions(down_direction(scene.gravity));
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     BodyDesc& b = s.bodies[i];
     if (b.fixed) continue;

@@ -35,10 +35,6 @@ double start_uniform(std::uint64_t seed, int index, std::size_t body) {
 
 bool in_the_pile(const Scene& scene, std::size_t i) { return !scene.bodies[i].fixed && !scene.bodies[i].wire; }
 
-Vec3 down_of_scene(const Scene& scene) {
-  return scene.gravity.norm() > 0.0 ? Vec3(scene.gravity.normalized()) : Vec3(-Vec3::UnitZ());
-}
-
 // The part of `v` across gravity.
 Vec3 across_gravity(const Vec3& v, const Vec3& down) { return v - v.dot(down) * down; }
 
@@ -51,7 +47,7 @@ std::string mean_sd_text(const SampleSummary& s) {
 std::map<std::string, double> outcome_measures(const Scene& scene, const std::vector<BodyState>& start,
                                                const std::vector<BodyState>& end) {
   std::vector<RigidBody> bodies = make_bodies(scene);
-  const Vec3 down = down_of_scene(scene);
+  const Vec3 down = down_direction(scene.gravity);
   std::map<std::string, double> m;
 
   set_body_states(bodies, start);
@@ -105,10 +101,7 @@ std::map<std::string, double> outcome_measures(const Scene& scene, const std::ve
 
 Scene perturbed_start(const Scene& scene, double distance, std::uint64_t seed, int index) {
   Scene s = scene;
-  const Vec3 down = down_of_scene(scene);
-  const Vec3 helper = std::abs(down.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
-  const Vec3 u = down.cross(helper).normalized();
-  const Vec3 v = down.cross(u);
+  const auto [u, v] = across_directions(down_direction(scene.gravity));
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     BodyDesc& b = s.bodies[i];
     if (b.fixed) continue;

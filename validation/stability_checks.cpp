@@ -31,7 +31,7 @@ SceneCheckResult at_most(std::string name, double value, double limit, std::stri
 }  // namespace
 
 RunMonitor::RunMonitor(const Scene& scene) : scene_(scene), bodies_(make_bodies(scene)) {
-  if (scene.gravity.norm() > 0.0) up_ = -scene.gravity.normalized();
+  up_ = -down_direction(scene.gravity);
   m_.smallest_edge = smallest_edge(scene);
 }
 

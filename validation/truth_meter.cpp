@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "boxpile/sim/metrics.hpp"
+
 namespace boxpile {
 namespace {
 
@@ -31,7 +33,7 @@ TruthMeter::TruthMeter(const Scene& scene) : truth_(scene.truth) {
                         std::to_string(truth_.duration) + " s, the run lasts " + std::to_string(scene.time.duration) +
                         " s");
   }
-  if (scene.gravity.norm() > 0.0) up_ = -scene.gravity.normalized();
+  up_ = -down_direction(scene.gravity);
 }
 
 void TruthMeter::observe(double t, const std::vector<BodyState>& states) {
