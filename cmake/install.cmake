@@ -44,10 +44,11 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/fixtures DESTINATION ${BOXPILE_DATA_INST
 # The sweep grids, at the same place relative to the fixtures as in the source tree: their scene
 # paths (relative to the grid file) hold, and `boxpile sweep NAME` finds them by name.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/benchmarks/grids DESTINATION ${BOXPILE_DATA_INSTALL_DIR}/benchmarks)
-# The node-hosted engines: their adapters, package.json and the npm packages scripts/install-deps
-# put in reference/node_modules, where the data folder's reference/ has them in the build tree too.
+# The node-hosted engines: their adapters, the protocol loop they share (reference/protocol/),
+# package.json and the npm packages scripts/install-deps put in reference/node_modules, where the
+# data folder's reference/ has them in the build tree too.
 # OPTIONAL: a tree without them installs a boxpile that lists those engines as unavailable.
-foreach(folder jolt rapier mujoco_wasm node_modules)
+foreach(folder protocol jolt rapier mujoco_wasm node_modules)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/reference/${folder} DESTINATION ${BOXPILE_DATA_INSTALL_DIR}/reference
     OPTIONAL USE_SOURCE_PERMISSIONS PATTERN "*.cpp" EXCLUDE PATTERN "*.hpp" EXCLUDE PATTERN "CMakeLists.txt" EXCLUDE)
 endforeach()

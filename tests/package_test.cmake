@@ -43,3 +43,18 @@ if(NOT n EQUAL 4)
 endif()
 run_step("the packaged conform" ${WORK}/root/usr/bin/boxpile conform
          --collider "${WORK}/root/usr/bin/boxpile contacts --serve" --samples 50 --report ${WORK}/conform)
+# The node-hosted engines run from the unpacked tree when the package holds their npm packages
+# (a build tree without reference/node_modules packages boxpile without them): their adapters,
+# the protocol loop they share and the packages must all be installed. free_fall's box starts at
+# z 10 m rising at 2 m/s: after 0.1 s, z = 10 + 0.2 - g 0.1^2 / 2 = 10.1510 m; each engine's
+# integrator lags by at most g t dt / 2 = 2.0e-3 m at dt 1/240 s, so 3e-3 m is the gate.
+if(EXISTS ${WORK}/root/usr/share/boxpile/reference/node_modules)
+  foreach(engine jolt rapier mujoco-wasm)
+    run_step("the packaged boxpile with ${engine}" ${WORK}/root/usr/bin/boxpile run
+             ${WORK}/root/usr/share/boxpile/fixtures/scenes/free_fall.json --engine ${engine} --duration 0.1)
+    string(REGEX MATCH "position \\([^,]+, [^,]+, ([0-9.]+)\\)" found "${step_output}")
+    if(NOT found OR CMAKE_MATCH_1 LESS 10.148 OR CMAKE_MATCH_1 GREATER 10.154)
+      message(FATAL_ERROR "the packaged boxpile with ${engine}: expected the box at z 10.151 +- 0.003 m:\n${step_output}")
+    endif()
+  endforeach()
+endif()
