@@ -7,8 +7,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 #include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/validation/data_directory.hpp"
@@ -21,19 +23,19 @@ namespace {
 namespace fs = std::filesystem;
 
 // The node-hosted engines: their adapters under the data folder (docs/engine-protocol.md), with
-// the npm packages they import in reference/node_modules beside them.
+// the npm packages they import in reference/node_modules beside them. The packages an engine
+// imports are named once, in its folder's `packages` file (`npm NAME VERSION` lines, which
+// scripts/install-deps and package.json follow); its title is made from them.
 struct NodeEngine {
   std::string_view name;
   std::string_view title;
-  std::string_view package;  // the npm package and version (reference/package.json pins it)
-  std::string_view adapter;  // relative to the data folder
+  std::string_view adapter;  // relative to the data folder; its folder holds the `packages` file
   std::string_view colour;   // in every plot and replay page (EngineRow::colour)
 };
 constexpr std::array<NodeEngine, 3> kNodeEngines = {{
-    {"jolt", "Jolt Physics, single precision", "jolt-physics 1.1.0", "reference/jolt/jolt_engine.mjs", "#882255"},
-    {"rapier", "Rapier, single precision", "@dimforge/rapier3d-compat 0.21.0", "reference/rapier/rapier_engine.mjs", "#44AA99"},
-    {"mujoco-wasm", "MuJoCo 3.14, double precision", "@mujoco/mujoco 3.14.0",
-     "reference/mujoco_wasm/mujoco_wasm_engine.mjs", "#999933"},
+    {"jolt", "Jolt Physics, single precision", "reference/jolt/jolt_engine.mjs", "#882255"},
+    {"rapier", "Rapier, single precision", "reference/rapier/rapier_engine.mjs", "#44AA99"},
+    {"mujoco-wasm", "MuJoCo 3.14, double precision", "reference/mujoco_wasm/mujoco_wasm_engine.mjs", "#999933"},
 }};
 constexpr const char* kNodeModules = "reference/node_modules";
 constexpr const char* kInstallHint = " (run scripts/install-deps)";
@@ -112,26 +114,45 @@ EngineRow process_row(const std::string& name, std::string title, const std::str
   return row;
 }
 
+// "jolt-physics 1.1.0": the `npm NAME VERSION` lines of a `packages` file, joined by ", ";
+// empty when the file is missing.
+std::string npm_packages(const fs::path& list) {
+  std::ifstream in(list);
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string kind, name, version;
+    if (!(words >> kind >> name >> version) || kind != "npm") continue;
+    out += (out.empty() ? "" : ", ") + name + " " + version;
+  }
+  return out;
+}
+
 void add_node_row(const NodeEngine& e) {
-  const std::string title = std::string(e.title) + " (WebAssembly in node, npm " + std::string(e.package) + ")";
   const auto add = [&e](EngineRow row) {
     row.colour = e.colour;
     add_engine(std::move(row));
   };
+  const std::string plain_title = std::string(e.title) + " (WebAssembly in node)";
   if (!on_path("node")) {
-    add(process_row(std::string(e.name), title, "", std::string("node is not installed") + kInstallHint));
+    add(process_row(std::string(e.name), plain_title, "", std::string("node is not installed") + kInstallHint));
     return;
   }
   fs::path data;
   try {
     data = data_directory();
   } catch (const std::exception& error) {
-    add(process_row(std::string(e.name), title, "", error.what()));
+    add(process_row(std::string(e.name), plain_title, "", error.what()));
     return;
   }
   const fs::path adapter = data / e.adapter, modules = data / kNodeModules;
+  const std::string packages = npm_packages(adapter.parent_path() / "packages");
+  const std::string title =
+      packages.empty() ? plain_title : std::string(e.title) + " (WebAssembly in node, npm " + packages + ")";
   std::string unavailable;
-  if (!fs::exists(adapter)) {
+  if (packages.empty()) {
+    unavailable = "its package list is missing: " + (adapter.parent_path() / "packages").string();
+  } else if (!fs::exists(adapter)) {
     unavailable = "its adapter is missing: " + adapter.string();
   } else if (!fs::is_directory(modules)) {
     unavailable = "its npm packages are missing: " + modules.string() + kInstallHint;

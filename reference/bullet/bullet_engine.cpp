@@ -8,6 +8,7 @@
 #include <BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h>
 #include <Eigen/Eigenvalues>
 
+#include "boxpile/reference/body_states.hpp"
 #include "boxpile/reference/bullet/bullet_support.hpp"
 #include "boxpile/reference/convention.hpp"
 #include "boxpile/sim/world.hpp"
@@ -295,18 +296,14 @@ double BulletEngine::time() const { return static_cast<double>(world_->steps) * 
 
 void BulletEngine::body_states(std::vector<BodyState>& out) const {
   const World& w = *world_;
-  out.resize(w.bodies.size());
-  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
-    const RigidBody& rb = w.bodies[i];
+  reference_detail::collect_body_states(w.bodies, out, [&](std::size_t i, BodyState& s) {
     const btRigidBody& body = *w.rigid[i];
-    BodyState& s = out[i];
-    s.name = rb.name;
     const btTransform& t = body.getWorldTransform();
     s.orientation = (from_bt(t.getRotation()) * w.principal[i].conjugate()).normalized();
-    s.position = from_bt(t.getOrigin()) + s.orientation * rb.frame_offset;
+    s.position = from_bt(t.getOrigin()) + s.orientation * w.bodies[i].frame_offset;
     s.velocity = from_bt(body.getLinearVelocity());
     s.angular_velocity = from_bt(body.getAngularVelocity());
-  }
+  });
 }
 
 void BulletEngine::contacts(std::vector<BodyContact>& out) const { out = world_->contacts; }

@@ -20,6 +20,7 @@
 #include <dart/dynamics/WeldJoint.hpp>
 #include <dart/simulation/World.hpp>
 
+#include "boxpile/reference/body_states.hpp"
 #include "boxpile/reference/dart/dart_convention.hpp"
 #include "boxpile/reference/dart/dart_support.hpp"
 #include "boxpile/sim/world.hpp"
@@ -355,23 +356,15 @@ double DartEngine::time() const { return static_cast<double>(world_->steps) * wo
 
 void DartEngine::body_states(std::vector<BodyState>& out) const {
   const World& w = *world_;
-  out.resize(w.bodies.size());
-  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
-    const RigidBody& rb = w.bodies[i];
+  reference_detail::collect_body_states(w.bodies, out, [&](std::size_t i, BodyState& s) {
     const BodyNode* node = w.nodes[i];
-    BodyState& s = out[i];
-    s.name = rb.name;
     const Eigen::Isometry3d t = node->getWorldTransform();
     s.orientation = Quat(t.linear()).normalized();
-    s.position = t.translation() + s.orientation * rb.frame_offset;
-    if (w.mobile[i]) {
-      s.velocity = node->getLinearVelocity();  // the node's origin is the centre of mass
-      s.angular_velocity = node->getAngularVelocity();
-    } else {
-      s.velocity.setZero();
-      s.angular_velocity.setZero();
-    }
-  }
+    s.position = t.translation() + s.orientation * w.bodies[i].frame_offset;
+    // The node's origin is the centre of mass.
+    s.velocity = w.mobile[i] ? Vec3(node->getLinearVelocity()) : Vec3::Zero();
+    s.angular_velocity = w.mobile[i] ? Vec3(node->getAngularVelocity()) : Vec3::Zero();
+  });
 }
 
 void DartEngine::contacts(std::vector<BodyContact>& out) const { out = world_->contacts; }

@@ -6,6 +6,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include "boxpile/reference/body_states.hpp"
 #include "boxpile/reference/convention.hpp"
 #include "boxpile/reference/mujoco/mujoco_model.hpp"
 #include "boxpile/sim/body.hpp"
@@ -256,25 +257,14 @@ double MujocoEngine::time() const { return static_cast<double>(world_->steps) * 
 
 void MujocoEngine::body_states(std::vector<BodyState>& out) const {
   const World& w = *world_;
-  out.resize(w.bodies.size());
-  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
-    const RigidBody& rb = w.bodies[i];
-    BodyState& s = out[i];
-    s.name = rb.name;
-    if (w.map[i].mount == Mount::Fixed) {
-      const Pose frame = rb.frame_pose();
-      s.position = frame.position;
-      s.orientation = frame.orientation;
-      s.velocity.setZero();
-      s.angular_velocity.setZero();
-      continue;
-    }
+  reference_detail::collect_body_states(w.bodies, out, [&](std::size_t i, BodyState& s) {
+    if (w.map[i].mount == Mount::Fixed) return reference_detail::set_fixed_state(w.bodies[i], s);
     const int id = w.map[i].id;
     const mjtNum* q = w.data->xquat + 4 * id;
     s.position = vec3(w.data->xpos + 3 * id);
     s.orientation = Quat(q[0], q[1], q[2], q[3]).normalized();
     std::tie(s.angular_velocity, s.velocity) = w.velocities(id);
-  }
+  });
 }
 
 void MujocoEngine::contacts(std::vector<BodyContact>& out) const { out = world_->contacts; }

@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "boxpile/reference/body_states.hpp"
 #include "boxpile/reference/ode/ode_support.hpp"
 #include "boxpile/sim/world.hpp"
 
@@ -361,25 +362,14 @@ double OdeEngine::time() const { return static_cast<double>(world_->steps) * wor
 
 void OdeEngine::body_states(std::vector<BodyState>& out) const {
   const World& w = *world_;
-  out.resize(w.bodies.size());
-  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
-    const RigidBody& rb = w.bodies[i];
-    BodyState& s = out[i];
-    s.name = rb.name;
-    if (const dBodyID body = w.ode_bodies[i]) {
-      const Vec3 x = from_ode(dBodyGetPosition(body));
-      s.orientation = quat_from_ode(dBodyGetQuaternion(body));
-      s.position = x + s.orientation * rb.frame_offset;
-      s.velocity = from_ode(dBodyGetLinearVel(body));
-      s.angular_velocity = from_ode(dBodyGetAngularVel(body));
-    } else {
-      const Pose frame = rb.frame_pose();
-      s.position = frame.position;
-      s.orientation = frame.orientation;
-      s.velocity.setZero();
-      s.angular_velocity.setZero();
-    }
-  }
+  reference_detail::collect_body_states(w.bodies, out, [&](std::size_t i, BodyState& s) {
+    const dBodyID body = w.ode_bodies[i];
+    if (!body) return reference_detail::set_fixed_state(w.bodies[i], s);
+    s.orientation = quat_from_ode(dBodyGetQuaternion(body));
+    s.position = from_ode(dBodyGetPosition(body)) + s.orientation * w.bodies[i].frame_offset;
+    s.velocity = from_ode(dBodyGetLinearVel(body));
+    s.angular_velocity = from_ode(dBodyGetAngularVel(body));
+  });
 }
 
 void OdeEngine::contacts(std::vector<BodyContact>& out) const { out = world_->contacts; }

@@ -10,6 +10,7 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -69,6 +70,26 @@ struct Setting {
   void (*apply)(S& settings, const nlohmann::json& value);
   nlohmann::json (*read)(const S& settings);
 };
+
+namespace setting_detail {
+template <class>
+struct MemberOf;
+template <class S, class T>
+struct MemberOf<T S::*> {
+  using Owner = S;
+  using Type = T;
+};
+}  // namespace setting_detail
+
+// The row of a setting that is one member of S, written and read back as it is (the JSON's type is
+// the member's: int, double, bool, std::string): member_setting<&OdeSettings::erp>({"erp", ...}).
+template <auto Member>
+Setting<typename setting_detail::MemberOf<decltype(Member)>::Owner> member_setting(SettingInfo info) {
+  using S = typename setting_detail::MemberOf<decltype(Member)>::Owner;
+  using T = typename setting_detail::MemberOf<decltype(Member)>::Type;
+  return {std::move(info), [](S& settings, const nlohmann::json& value) { settings.*Member = value.get<T>(); },
+          [](const S& settings) { return nlohmann::json(settings.*Member); }};
+}
 
 // An engine's settings: the rows in the order `boxpile settings` lists them.
 template <class S>
