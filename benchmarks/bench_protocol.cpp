@@ -35,26 +35,9 @@ Scene resting_boxes(int n) {
   return scene;
 }
 
-void BM_StepInProcess(benchmark::State& state) {
-  const Scene scene = resting_boxes(static_cast<int>(state.range(0)));
-  World world(scene);
-  std::vector<BodyState> states;
-  std::vector<BodyContact> contacts;
-  for (auto _ : state) {
-    world.step();
-    world.body_states(states);
-    world.contacts(contacts);
-    benchmark::DoNotOptimize(states.data());
-  }
-  state.counters["bodies"] = static_cast<double>(scene.bodies.size());
-}
-
-void BM_StepOverProtocol(benchmark::State& state) {
-  const Scene scene = resting_boxes(static_cast<int>(state.range(0)));
-  ProcessEngineOptions options;
-  options.name = "own-world";
-  options.command = BOXPILE_OWN_WORLD_ENGINE;
-  ProcessEngine engine(scene, options);
+// Steps `engine` and asks its states and contacts, as boxpile's run loop does each step.
+template <class E>
+void step_and_report(benchmark::State& state, E& engine, std::size_t bodies) {
   std::vector<BodyState> states;
   std::vector<BodyContact> contacts;
   for (auto _ : state) {
@@ -63,7 +46,22 @@ void BM_StepOverProtocol(benchmark::State& state) {
     engine.contacts(contacts);
     benchmark::DoNotOptimize(states.data());
   }
-  state.counters["bodies"] = static_cast<double>(scene.bodies.size());
+  state.counters["bodies"] = static_cast<double>(bodies);
+}
+
+void BM_StepInProcess(benchmark::State& state) {
+  const Scene scene = resting_boxes(static_cast<int>(state.range(0)));
+  World world(scene);
+  step_and_report(state, world, scene.bodies.size());
+}
+
+void BM_StepOverProtocol(benchmark::State& state) {
+  const Scene scene = resting_boxes(static_cast<int>(state.range(0)));
+  ProcessEngineOptions options;
+  options.name = "own-world";
+  options.command = BOXPILE_OWN_WORLD_ENGINE;
+  ProcessEngine engine(scene, options);
+  step_and_report(state, engine, scene.bodies.size());
   // The engine's own time per step, as it reported it: the in-process cost seen from the far side.
   state.counters["engine_us"] = 1e6 * engine.reported_seconds().value_or(0.0) / static_cast<double>(state.iterations());
 }
