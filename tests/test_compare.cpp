@@ -41,6 +41,16 @@ void check_report_keys(const json& r, const std::vector<std::string>& engines) {
   CHECK(r.at("scene").is_string());
   CHECK(r.at("dt").is_number());
   CHECK(r.at("duration").is_number());
+  // Findings: every engine's checks at least (each scene has the default ones), each finding
+  // naming an engine that ran.
+  REQUIRE(r.at("findings").is_array());
+  CHECK(r.at("findings").size() >= engines.size());
+  for (const json& f : r.at("findings")) {
+    CHECK(std::find(engines.begin(), engines.end(), f.at("engine").get<std::string>()) != engines.end());
+    CHECK(f.at("kind").is_string());
+    CHECK(f.at("what").is_string());
+    CHECK((f.at("t").is_number() || f.at("t").is_null()));
+  }
   REQUIRE(r.at("engines").size() == engines.size());
   for (const std::string& name : engines) {
     INFO("engine " << name);

@@ -515,6 +515,7 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
     for (const std::string& name : names) entries.push_back({name, name, settings.settings_of(name)});
     result.outcomes = run_outcomes(scene, entries, settings.outcomes);
   }
+  result.findings = compare_findings(result);
   return result;
 }
 

@@ -19,6 +19,7 @@
 #include "boxpile/sim/engine.hpp"
 #include "boxpile/sim/metrics.hpp"
 #include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/compare_findings.hpp"
 #include "boxpile/validation/contact_diff.hpp"
 #include "boxpile/validation/outcomes.hpp"
 #include "boxpile/validation/recording.hpp"
@@ -221,6 +222,8 @@ struct CompareResult {
   std::vector<PairComparison> pairs;
   std::vector<ContactFrameCheck> contacts;
   std::optional<OutcomeStatistics> outcomes;  // when settings.outcomes.starts > 0
+  // What the runs show engine by engine (validation/compare_findings.hpp).
+  std::vector<CompareFinding> findings;
 };
 
 // Runs the scene in each engine (then again from the perturbed start), one after the other (ODE's

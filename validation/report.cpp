@@ -306,6 +306,22 @@ std::string verdict_text(const PairComparison& p) {
 
 }  // namespace
 
+namespace {
+
+json findings_json(const std::vector<CompareFinding>& findings) {
+  json out = json::array();
+  for (const CompareFinding& f : findings)
+    out.push_back({{"engine", f.engine}, {"kind", f.kind}, {"what", f.what}, {"t", optional_number(f.t)}});
+  return out;
+}
+
+// "bullet (penetration, at 0.500 s): goes 1.62 m deep ...": a finding other than a check's.
+std::string finding_line(const CompareFinding& f) {
+  return f.engine + " (" + f.kind + (f.t ? ", at " + seconds(*f.t) : std::string()) + "): " + f.what;
+}
+
+}  // namespace
+
 json report_json(const CompareResult& r) {
   json engines = json::object();
   for (std::size_t e = 0; e < r.runs.size(); ++e) engines[r.runs[e].engine] = engine_json(r, r.runs[e], r.baselines[e]);
@@ -334,7 +350,8 @@ json report_json(const CompareResult& r) {
           {"engines", engines},
           {"pairs", pairs},
           {"contacts", contacts},
-          {"outcomes", r.outcomes ? outcomes_json(*r.outcomes) : json(nullptr)}};
+          {"outcomes", r.outcomes ? outcomes_json(*r.outcomes) : json(nullptr)},
+          {"findings", findings_json(r.findings)}};
 }
 
 std::vector<PlotSpec> report_plots(const CompareResult& r) {
@@ -443,6 +460,31 @@ void write_md_run(std::ostream& md, const CompareResult& r) {
 
   md << "Watch the runs side by side in [replay.html](replay.html) (open it in a browser; docs/viewer.md "
         "describes it).\n\n";
+}
+
+void write_md_findings(std::ostream& md, const CompareResult& r) {
+  md << "## Findings\n\n";
+  bool any = false;
+  for (const CompareFinding& f : r.findings) {
+    if (f.kind == "check") continue;
+    md << "- **" << f.engine << "** (" << f.kind << (f.t ? ", at " + seconds(*f.t) : std::string()) << "): " << f.what
+       << '\n';
+    any = true;
+  }
+  if (!any) md << "- nothing stands out: no engine alone fails a check, leaves the others first, parts from their energy or "
+                  "penetrates far past them\n";
+  md << "\nThe scene's checks (docs/scene-format.md, \"Checks\"), measured alike in every engine:\n\n";
+  for (const EngineRun& run : r.runs) {
+    md << "- " << run.engine << ":";
+    bool first = true;
+    for (const CompareFinding& f : r.findings) {
+      if (f.kind != "check" || f.engine != run.engine) continue;
+      md << (first ? " " : "; ") << f.what;
+      first = false;
+    }
+    md << (first ? " none\n" : "\n");
+  }
+  md << "\ndocs/compare.md, \"Findings\", gives each rule and its limits.\n\n";
 }
 
 void write_md_engines(std::ostream& md, const CompareResult& r) {
@@ -568,6 +610,7 @@ std::string report_markdown(const CompareResult& r, const std::vector<std::strin
                             const std::vector<std::string>& notes) {
   std::ostringstream md;
   write_md_run(md, r);
+  write_md_findings(md, r);
   write_md_engines(md, r);
   write_md_stacks(md, r);
   write_md_pairs(md, r);
@@ -584,6 +627,12 @@ std::string summary_table(const CompareResult& r) {
   os << "scene " << r.scene.name << ": " << r.steps << " steps of " << dt_text(r.scene.time.dt) << '\n'
      << plain_table(engine_header(r, ""), engine_rows(r));
   for (const PairComparison& p : r.pairs) os << "  " << pair_line(p, r.settings.position_threshold) << '\n';
+  for (const CompareFinding& f : r.findings)
+    if (f.kind != "check") os << "  finding: " << finding_line(f) << '\n';
+  for (const EngineRun& run : r.runs) {
+    const auto failed = std::count_if(run.checks.begin(), run.checks.end(), [](const SceneCheckResult& c) { return !c.passed; });
+    if (failed > 0) os << "  " << run.engine << " fails " << failed << " of the scene's " << run.checks.size() << " checks\n";
+  }
   if (r.outcomes) {
     os << "outcomes over " << r.outcomes->settings.starts << " perturbed starts (" << fmt(r.outcomes->settings.perturbation)
        << " m):\n";
