@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,6 +14,15 @@
 #include "boxpile/sim/math.hpp"
 
 namespace boxpile {
+
+// An engine's own refusal of a scene, or of a state it reached: a model MuJoCo cannot allocate, a
+// contact list it cannot grow, an assertion inside ODE. The engine cannot go on with that scene. A
+// command that runs one scene reports it as input outside what the engine can take (exit 2);
+// `boxpile stability` records it as the cell's failure and goes on with the next cell.
+class EngineRefused : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 struct CollisionEvent;  // sim/solver/step_context.hpp
 struct StepStats;

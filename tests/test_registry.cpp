@@ -27,6 +27,7 @@
 #include "boxpile/validation/engine_settings.hpp"
 #include "boxpile/validation/process_engines.hpp"
 #include "boxpile/validation/stability.hpp"
+#include "boxpile/validation/stability_report.hpp"
 
 using namespace boxpile;
 using namespace boxpile::test;
@@ -624,6 +625,31 @@ TEST_CASE("stability's cell time limit stops a cell and fails its finished check
   CHECK(cut.checks.front().value == 1.0);
   CHECK(cut.checks.front().limit == static_cast<double>(whole.steps));
   CHECK(describe(cut.checks.front()) == "finished 1 steps < " + std::to_string(whole.steps));
+}
+
+// An engine that refuses a scene (EngineRefused: MuJoCo 2.2 cannot allocate the 385-box pyramid's
+// constraint arrays) fails that cell by its "finished" check, with its message in the cell and in
+// stability.json, and the matrix goes on with the next cell.
+TEST_CASE("stability records an engine's refusal of a scene as the cell's failure", "[registry]") {
+  if (!find_engine_row("mujoco") || !find_engine_row("mujoco")->make) return;  // built without MuJoCo
+  const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/hard/pyramid_10.json");
+  StabilitySettings settings;
+  settings.engines = {"mujoco"};
+  const StabilityCell cell = run_stability_cell(scene, "mujoco", settings);
+  CHECK(!cell.passed);
+  CHECK(cell.steps < step_count(scene.time));
+  CHECK_THAT(cell.refused, Contains("mujoco"));
+  REQUIRE(!cell.checks.empty());
+  CHECK(cell.checks.front().name == "finished");
+  CHECK(!cell.checks.front().passed);
+  CHECK(cell.checks.front().limit == static_cast<double>(step_count(scene.time)));
+  StabilityResult result;
+  result.engines = {"mujoco"};
+  result.scenes = {scene};
+  result.cells = {cell};
+  const json doc = stability_json(result);
+  CHECK(doc["cells"][0]["refused"] == cell.refused);
+  CHECK_THAT(cell_text(cell), Contains("refused: mujoco"));
 }
 
 TEST_CASE("docs state the loader's half-extent range and the integrator's default", "[registry]") {

@@ -43,7 +43,6 @@ StabilityCell run_stability_cell(const Scene& scene_file, std::string_view engin
   cell.scene = scene_file.name;
   cell.engine = std::string(engine_name);
   const nlohmann::json given = settings.settings_of(std::string(engine_name));
-  const std::unique_ptr<Engine> engine = make_engine(engine_name, scene_file, given);
   cell.settings = resolved_settings(engine_name, scene_file, given);
   // What the engine runs (its time step, and our solver's settings): the steps and the rulers.
   const Scene scene = scene_with_settings(engine_name, scene_file, given);
@@ -53,8 +52,10 @@ StabilityCell run_stability_cell(const Scene& scene_file, std::string_view engin
   const long progress_every = std::max(1L, steps / 100);
 
   RunMonitor monitor(scene);
+  long steps_seen = 0;
   RunHooks hooks;
   hooks.step = [&](const StepView& v) {
+    steps_seen = v.step;
     monitor.observe(v.step, v.states);
     if (progress && v.step > 0 && (v.step % progress_every == 0 || v.step == steps))
       progress(static_cast<double>(v.step) / static_cast<double>(steps));
@@ -70,19 +71,30 @@ StabilityCell run_stability_cell(const Scene& scene_file, std::string_view engin
       return std::chrono::duration<double>(Clock::now() - start).count() > settings.cell_time_limit;
     };
   }
-  const RunLoopResult loop = run_loop(*engine, scene.time.dt, steps, every, hooks);
-  cell.steps = loop.steps;
-  cell.out_of_time = loop.cut_short;
-  cell.wall_seconds = loop.wall_seconds;
-  cell.us_per_step = cell.steps > 0 ? 1e6 * loop.engine_seconds / static_cast<double>(cell.steps) : 0.0;
-  if (loop.stopped) monitor.stopped_non_finite();
+  bool unfinished = false;
+  try {
+    const std::unique_ptr<Engine> engine = make_engine(engine_name, scene_file, given);
+    const RunLoopResult loop = run_loop(*engine, scene.time.dt, steps, every, hooks);
+    cell.steps = loop.steps;
+    cell.out_of_time = unfinished = loop.cut_short;
+    cell.wall_seconds = loop.wall_seconds;
+    cell.us_per_step = cell.steps > 0 ? 1e6 * loop.engine_seconds / static_cast<double>(cell.steps) : 0.0;
+    if (loop.stopped) monitor.stopped_non_finite();
+  } catch (const EngineRefused& e) {
+    // The engine could not take the scene, or a state it reached: the cell fails, judged on the
+    // steps it ran, and the matrix goes on.
+    cell.refused = e.what();
+    cell.steps = steps_seen;
+    cell.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    unfinished = true;
+  }
   cell.measures = monitor.measures();
   cell.checks = monitor.evaluate();
-  if (cell.out_of_time) {
+  if (unfinished) {
     // The run is unfinished: a failed check of its own, beside the checks of the steps run.
     SceneCheckResult finished;
     finished.name = "finished";
-    finished.value = static_cast<double>(loop.steps);
+    finished.value = static_cast<double>(cell.steps);
     finished.limit = static_cast<double>(steps);
     finished.at_least = true;
     finished.unit = "steps";

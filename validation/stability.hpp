@@ -78,6 +78,9 @@ struct StabilityCell {
   RunMeasures measures;
   long steps = 0;  // steps run (fewer than the scene's when a state became NaN or time ran out)
   bool out_of_time = false;  // stopped at settings.cell_time_limit
+  // The engine refused the scene or a state it reached (EngineRefused: MuJoCo's or ODE's error),
+  // its message; empty when it ran. Such a cell fails its "finished" check.
+  std::string refused;
   double us_per_step = 0.0;
   double wall_seconds = 0.0;  // stepping only
   std::vector<double> t, energy, kinetic;  // recorded frames, s and J

@@ -76,6 +76,7 @@ std::string cell_text(const StabilityCell& cell) {
   int failures = 0;
   for (const SceneCheckResult& r : cell.checks) failures += r.passed ? 0 : 1;
   if (failures > 1) s += " (+" + std::to_string(failures - 1) + " more)";
+  if (!cell.refused.empty()) s += "; refused: " + cell.refused;
   return s;
 }
 
@@ -149,6 +150,7 @@ json stability_json(const StabilityResult& r) {
                      {"measures", measures_json(c.measures)},
                      {"steps", c.steps},
                      {"out_of_time", c.out_of_time},
+                     {"refused", c.refused.empty() ? json(nullptr) : json(c.refused)},
                      {"us_per_step", number(c.us_per_step)},
                      {"us_per_sim_s", number(c.us_per_sim_s())},
                      {"wall_seconds", number(c.wall_seconds)}});

@@ -7,14 +7,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "boxpile/sim/engine.hpp"
+
 namespace boxpile {
 
 // MuJoCo reported an error (a bad model, a full arena, an internal check), or a run reached a
 // state MuJoCo would silently reset (a non-finite qacc): the engine that hit it cannot be used
 // further. The command line reports it as an engine failure naming "mujoco".
-class MujocoError : public std::runtime_error {
+class MujocoError : public EngineRefused {
  public:
-  using std::runtime_error::runtime_error;
+  using EngineRefused::EngineRefused;
 };
 
 // MuJoCo's warnings (mju_warning) caught since the process started, with the last text.

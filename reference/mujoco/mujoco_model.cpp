@@ -1,5 +1,6 @@
 #include "boxpile/reference/mujoco/mujoco_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -26,6 +27,11 @@ constexpr int kContactsPerGeom = 16;
 constexpr int kContactsSpare = 16;
 constexpr int kRowsPerContact = 4;
 constexpr int kRowsPerWire = 2;
+// MuJoCo 2.2 sizes its stack from njmax (about 7 njmax^2 numbers when nstack is left to it) in an
+// int: above some 12,000 rows the model cannot be made ("could not create mjData", measured on the
+// 210-box pyramid_2d_20 at 13,568 rows; 12,000 loads). The rows are capped there, and a scene that
+// needs more contacts than that leaves makes MuJoCo's contact list full: an error that names it.
+constexpr int kMostRows = 12000;
 // The document's name inside the virtual file system.
 constexpr const char* kDocumentName = "boxpile_scene.xml";
 
@@ -197,7 +203,8 @@ std::string mujoco_mjcf(const Scene& scene, const std::vector<RigidBody>& bodies
     }
   }
 
-  const int nconmax = kContactsPerGeom * geoms + kContactsSpare;
+  const int nconmax =
+      std::min(kContactsPerGeom * geoms + kContactsSpare, (kMostRows - kRowsPerWire * wires) / kRowsPerContact);
   std::string x = "<mujoco model=\"" + std::string("boxpile") + "\">\n";
   x += "  <compiler angle=\"radian\"/>\n";
   x += option_element(scene, s);

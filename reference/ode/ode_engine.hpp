@@ -24,9 +24,9 @@ OdeMessageLog ode_messages();
 // the process, boxpile's handlers throw this. The engine that hit it cannot be used further. The
 // scene loader's ranges (sim/limits.hpp) keep every accepted scene away from these; the command
 // line reports one as bad input (exit 2).
-class OdeError : public std::runtime_error {
+class OdeError : public EngineRefused {
  public:
-  using std::runtime_error::runtime_error;
+  using EngineRefused::EngineRefused;
 };
 
 // Bodies at their centre of mass with one box geom per shape (geom offsets for compounds),
