@@ -12,7 +12,10 @@
 
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/io/setting.hpp"
 #include "boxpile/validation/accuracy.hpp"
+#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/process_engines.hpp"
 #include "boxpile/validation/run_loop.hpp"
 #include "boxpile/validation/truth_meter.hpp"
 
@@ -195,6 +198,51 @@ TEST_CASE("accuracy.json has the documented fields", "[accuracy]") {
   REQUIRE(engine.at("cells").size() == 2);
   for (const char* key : {"dt", "settings", "error", "us_per_sim_s"}) CHECK(engine.at("cells").at(0).contains(key));
   CHECK(engine.at("cells").at(0).at("us_per_sim_s").get<double>() > 0.0);
+}
+
+TEST_CASE("a cell's step is the shared dt setting written in its settings", "[accuracy]") {
+  AccuracySettings s;
+  s.engines = {"own-impulse"};
+  s.steps = {1.0 / 60, 1.0 / 120};
+  s.repetitions = 1;
+  const AccuracyEngine e = run_accuracy({analytic("slide_to_stop")}, s).scenes.at(0).engines.at(0);
+  REQUIRE(e.cells.size() == 2);
+  for (const AccuracyCell& c : e.cells) {
+    REQUIRE(c.settings.contains(time_step_setting().key));
+    CHECK(c.settings.at(time_step_setting().key).get<double>() == c.dt);
+    // The scene lasts 1 s: the steps are the duration over the cell's dt.
+    CHECK(c.steps == std::lround(1.0 / c.dt));
+  }
+}
+
+// An engine over the protocol is charged its reported engine_seconds, not the round trip: the
+// test engine reports exactly 0.5 s a step (its wall time is far less), so a cell at dt costs
+// 0.5 s / dt per simulated second.
+TEST_CASE("a protocol engine's cost is the time it reports", "[accuracy][protocol]") {
+  static const bool added = [] {
+    add_engine_command("timed-test=python3 " + std::string(BOXPILE_TESTS_DIR) + "/engines/broken_engine.py timed");
+    return true;
+  }();
+  REQUIRE(added);
+  constexpr double kReported = 0.5;  // s a step: broken_engine.py's SECONDS_PER_STEP
+  AccuracySettings s;
+  s.engines = {"timed-test"};
+  s.steps = {1.0 / 60, 1.0 / 120};
+  s.repetitions = 2;
+  const AccuracyEngine e = run_accuracy({analytic("slide_to_stop")}, s).scenes.at(0).engines.at(0);
+  REQUIRE(e.cells.size() == 2);
+  for (const AccuracyCell& c : e.cells) {
+    INFO("dt " << c.dt);
+    CHECK(c.us_per_simulated_second == Approx(1e6 * kReported / c.dt).epsilon(1e-12));
+  }
+  // compare's per-step cost reads the same figure.
+  CompareSettings cs;
+  cs.engines = {"timed-test"};
+  Scene scene = analytic("slide_to_stop");
+  scene.time.duration = 0.1;
+  const CompareResult r = run_compare(scene, cs);
+  REQUIRE(r.runs.size() == 1);
+  CHECK(r.runs[0].us_per_step == Approx(1e6 * kReported).epsilon(1e-12));
 }
 
 TEST_CASE("a fixed scene's final states match their golden record", "[accuracy][determinism]") {
