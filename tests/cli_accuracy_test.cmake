@@ -38,3 +38,28 @@ file(WRITE "${WORK}/untrue.json" [=[
 ]=])
 expect_refused("untrue.json: truth.final_positions.bx: no body named \"bx\"" "${WORK}/bad" accuracy "${WORK}/untrue.json"
                --engines own --report "${WORK}/bad")
+
+# --- --starts: the outcome statistics per scene in accuracy.json (docs/accuracy.md) ---
+run_boxpile(0 accuracy "${FIXTURES}/analytic/slide_to_stop.json" --engines own,ode --dt 0.0166666666666667,0.00833333333333333
+            --repetitions 1 --starts 4 --report "${WORK}/starts")
+expect_contains("${out}" "outcomes over 4 starts, own vs ode: within chaos")
+file(READ "${WORK}/starts/accuracy.json" report)
+expect_json("${report}" 4 scenes 0 outcomes starts)
+expect_json("${report}" 0.001 scenes 0 outcomes perturbation)
+expect_match("${report}" "^0\\.00416666" scenes 0 outcomes dt)
+expect_length("${report}" 5 scenes 0 outcomes measures)
+expect_length("${report}" 2 scenes 0 outcomes engines)
+expect_length("${report}" 4 scenes 0 outcomes engines 1 samples com_shift)
+# Moved 1 mm across gravity or not, the box slides 0.911 m (ODE at the scene's 1/240 s) from every start.
+expect_match("${report}" "^0\\.9111" scenes 0 outcomes engines 1 summary com_shift mean)
+expect_json("${report}" "within chaos" scenes 0 outcomes pairs 0 verdict)
+expect_length("${report}" 5 scenes 0 outcomes pairs 0 tests)
+expect_refused("--starts: must be in [0, 500], got -3" "${WORK}/bad" accuracy "${FIXTURES}/analytic/slide_to_stop.json"
+               --engines own --starts -3 --report "${WORK}/bad")
+foreach(p -1e-3 nan)
+  expect_refused("--start-perturbation: must be in (0, 1] m" "${WORK}/bad" accuracy "${FIXTURES}/analytic/slide_to_stop.json"
+                 --engines own --starts 4 --start-perturbation ${p} --report "${WORK}/bad")
+endforeach()
+# The step is accuracy's own (--dt): an engine's own step through --set is refused, naming it.
+expect_refused("--set: own.dt" "${WORK}/bad" accuracy "${FIXTURES}/analytic/slide_to_stop.json" --engines own
+               --set own.dt=0.01 --report "${WORK}/bad")

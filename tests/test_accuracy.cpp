@@ -12,7 +12,10 @@
 
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/io/setting.hpp"
 #include "boxpile/validation/accuracy.hpp"
+#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/process_engines.hpp"
 #include "boxpile/validation/run_loop.hpp"
 #include "boxpile/validation/truth_meter.hpp"
 
@@ -118,6 +121,41 @@ TEST_CASE("our engine's errors against the analytic truths are first order in dt
   }
 }
 
+TEST_CASE("our engine tips a box on an incline by its aspect ratio as the truth says", "[accuracy]") {
+  // fixtures/analytic/incline_tip.json: on 20 degrees with mu = 1, the box with a / c = 0.4 >
+  // tan 20 = 0.364 stays where it is and the one with a / c = 0.3 falls onto its downhill face.
+  // Measured: 'stays' moved 8.0e-10, 9.0e-13, 2.1e-10, 2.5e-12 m at 1/60 ... 1/480 s (rounding:
+  // the order fitted to these is noise and not gated) and both final orientations within 3.4e-7,
+  // 0, 1.8e-6, 0 rad; a box that tipped wrongly or not at all would be 1.57 rad off.
+  const AccuracyEngine e = swept("own-impulse", analytic("incline_tip"));
+  REQUIRE(e.cells.size() == 4);
+  for (const AccuracyCell& c : e.cells) {
+    INFO("dt " << c.dt << ": position error " << c.error << " m, orientation error " << c.measures.orientation.value_or(NAN)
+               << " rad");
+    CHECK(c.error < 1e-8);
+    REQUIRE(c.measures.orientation);
+    CHECK(*c.measures.orientation < 1e-5);
+  }
+}
+
+TEST_CASE("our engine lands a thrown box flat on a step and slides it on as the truth says", "[accuracy]") {
+  // fixtures/analytic/step_landing.json: ballistic flight over the step's edge, a flat plastic
+  // landing without friction, 3 m/s kept: x = 6 m, z = 0.75 m at 2 s. Semi-implicit Euler is exact
+  // for the flight's x and the landing leaves nothing to the step: measured position errors 1.3e-14
+  // to 7.4e-14 m, velocity errors at most 5.9e-15 m/s, orientation 0 (MuJoCo's soft contact sinks
+  // it 0.22 mm, Bullet's landing turns it 6e-3 rad at 1/60 s).
+  const AccuracyEngine e = swept("own-impulse", analytic("step_landing"));
+  REQUIRE(e.cells.size() == 4);
+  for (const AccuracyCell& c : e.cells) {
+    INFO("dt " << c.dt << ": position error " << c.error << " m");
+    CHECK(c.error < 1e-12);
+    REQUIRE(c.measures.velocity);
+    CHECK(*c.measures.velocity < 1e-13);
+    REQUIRE(c.measures.orientation);
+    CHECK(*c.measures.orientation < 1e-12);
+  }
+}
+
 TEST_CASE("ODE's errors against the analytic truths are first order in dt, as measured", "[accuracy][reference]") {
   // ODE converges to the same limits at order 1; on the 20 degree incline its error is five times
   // ours (0.125 m at 1/60 s); on the spin it converges to a stop 0.17 rad short of the
@@ -126,6 +164,8 @@ TEST_CASE("ODE's errors against the analytic truths are first order in dt, as me
       {"ode", "incline_slide", "position", {0.125246, 0.0626915, 0.0313594, 0.0156896}, 0.9990},
       {"ode", "incline_mu", "position", {0.0408822, 0.0203649, 0.0101811, 0.00508882}, 1.0018},
       {"ode", "slide_to_stop", "position", {0.0248562, 0.012446, 0.00623907, 0.00312221}, 0.9975},
+      // The box that should stay on the 20 degree incline creeps downhill under ODE's soft contact.
+      {"ode", "incline_tip", "position", {0.00267859, 0.00126169, 0.000685054, 0.000298073}, 1.0384},
   };
   for (const Expected& x : cases) {
     DYNAMIC_SECTION(x.scene) {
@@ -195,6 +235,51 @@ TEST_CASE("accuracy.json has the documented fields", "[accuracy]") {
   REQUIRE(engine.at("cells").size() == 2);
   for (const char* key : {"dt", "settings", "error", "us_per_sim_s"}) CHECK(engine.at("cells").at(0).contains(key));
   CHECK(engine.at("cells").at(0).at("us_per_sim_s").get<double>() > 0.0);
+}
+
+TEST_CASE("a cell's step is the shared dt setting written in its settings", "[accuracy]") {
+  AccuracySettings s;
+  s.engines = {"own-impulse"};
+  s.steps = {1.0 / 60, 1.0 / 120};
+  s.repetitions = 1;
+  const AccuracyEngine e = run_accuracy({analytic("slide_to_stop")}, s).scenes.at(0).engines.at(0);
+  REQUIRE(e.cells.size() == 2);
+  for (const AccuracyCell& c : e.cells) {
+    REQUIRE(c.settings.contains(time_step_setting().key));
+    CHECK(c.settings.at(time_step_setting().key).get<double>() == c.dt);
+    // The scene lasts 1 s: the steps are the duration over the cell's dt.
+    CHECK(c.steps == std::lround(1.0 / c.dt));
+  }
+}
+
+// An engine over the protocol is charged its reported engine_seconds, not the round trip: the
+// test engine reports exactly 0.5 s a step (its wall time is far less), so a cell at dt costs
+// 0.5 s / dt per simulated second.
+TEST_CASE("a protocol engine's cost is the time it reports", "[accuracy][protocol]") {
+  static const bool added = [] {
+    add_engine_command("timed-test=python3 " + std::string(BOXPILE_TESTS_DIR) + "/engines/broken_engine.py timed");
+    return true;
+  }();
+  REQUIRE(added);
+  constexpr double kReported = 0.5;  // s a step: broken_engine.py's SECONDS_PER_STEP
+  AccuracySettings s;
+  s.engines = {"timed-test"};
+  s.steps = {1.0 / 60, 1.0 / 120};
+  s.repetitions = 2;
+  const AccuracyEngine e = run_accuracy({analytic("slide_to_stop")}, s).scenes.at(0).engines.at(0);
+  REQUIRE(e.cells.size() == 2);
+  for (const AccuracyCell& c : e.cells) {
+    INFO("dt " << c.dt);
+    CHECK(c.us_per_simulated_second == Approx(1e6 * kReported / c.dt).epsilon(1e-12));
+  }
+  // compare's per-step cost reads the same figure.
+  CompareSettings cs;
+  cs.engines = {"timed-test"};
+  Scene scene = analytic("slide_to_stop");
+  scene.time.duration = 0.1;
+  const CompareResult r = run_compare(scene, cs);
+  REQUIRE(r.runs.size() == 1);
+  CHECK(r.runs[0].us_per_step == Approx(1e6 * kReported).epsilon(1e-12));
 }
 
 TEST_CASE("a fixed scene's final states match their golden record", "[accuracy][determinism]") {

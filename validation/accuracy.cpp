@@ -8,6 +8,7 @@
 
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/io/setting.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/engine_settings.hpp"
 #include "boxpile/validation/run_loop.hpp"
@@ -81,12 +82,12 @@ std::vector<Vec3> settled_positions(const std::string& engine, const Scene& scen
   std::vector<Vec3> last;
   nlohmann::json previous;
   for (int scale : kReferenceScales) {
-    const nlohmann::json s = iteration_settings(engine, scene, base, scale);
+    const nlohmann::json s = iteration_settings(engine, scene, settings_at_step(base, dt), scale);
     // Nothing left to raise (no iteration setting, or each at its cap): the last run is the answer.
     if (!last.empty() && s == previous) break;
     previous = s;
     if (settings.progress) settings.progress(scene.name + " " + engine + " reference dt=" + std::to_string(dt));
-    const RunOutcome r = run_once(engine, scene_at_step(scene, dt), s, false);
+    const RunOutcome r = run_once(engine, scene, s, false);
     if (!r.finite) {
       throw std::runtime_error(engine + " went non-finite on " + scene.name + " at the reference step " +
                                std::to_string(dt) + " s");
@@ -144,10 +145,10 @@ std::string_view truth_kind_name(TruthKind kind) {
   return "analytic";
 }
 
-Scene scene_at_step(const Scene& scene, double dt) {
-  Scene s = scene;
-  s.time.dt = dt;
-  return s;
+nlohmann::json settings_at_step(const nlohmann::json& settings, double dt) {
+  nlohmann::json out = settings.is_null() ? nlohmann::json::object() : settings;
+  out[time_step_setting().key] = dt;
+  return out;
 }
 
 nlohmann::json iteration_settings(std::string_view engine, const Scene& scene, const nlohmann::json& settings,
@@ -212,7 +213,7 @@ AccuracyResult run_accuracy(const std::vector<Scene>& scenes, const AccuracySett
           AccuracyCell c;
           c.dt = dt;
           c.iteration_scale = scale;
-          c.settings = iteration_settings(engine, scene, settings_of(engine), scale);
+          c.settings = iteration_settings(engine, scene, settings_at_step(settings_of(engine), dt), scale);
           ae.cells.push_back(c);
         }
       }
@@ -231,7 +232,7 @@ AccuracyResult run_accuracy(const std::vector<Scene>& scenes, const AccuracySett
             settings.progress(scene.name + " " + ae.engine + " dt=" + std::to_string(c.dt) + " run " +
                               std::to_string(rep + 1));
           }
-          const RunOutcome r = run_once(ae.engine, scene_at_step(scene, c.dt), c.settings,
+          const RunOutcome r = run_once(ae.engine, scene, c.settings,
                                         rep == 0 && as.truth == TruthKind::Analytic);
           const double us = 1e6 * r.engine_seconds / (static_cast<double>(r.steps) * c.dt);
           if (rep == 0) {

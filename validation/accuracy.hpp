@@ -90,9 +90,10 @@ struct AccuracyResult {
   double wall_seconds = 0.0;
 };
 
-// `scene` run at the time step `dt`. The one place a cell's step is set: engines read their step
-// from the scene.
-Scene scene_at_step(const Scene& scene, double dt);
+// `settings` with the time step `dt` (s) written under the setting every engine shares
+// (time_step_setting(), "dt"): the one place a cell's step is set. The registry writes it into
+// the scene for every engine, as it does for a `--set ENGINE.dt=` anywhere else.
+nlohmann::json settings_at_step(const nlohmann::json& settings, double dt);
 
 // The settings of `engine` that count iterations or passes (an integer setting whose key ends in
 // "iterations" or "passes", read by the scene's method, running at 1 or more), each multiplied by

@@ -7,7 +7,9 @@ It answers hello and load correctly and keeps every body where the scene put it,
 breaks it: exit-at-step-3 (exits with status 3 at the third step, after a line on stderr),
 garbage (prints a line that is no JSON at step 2), wrong-count (one body too few at step 2),
 nan (a NaN position at step 2), sleep (never answers step 1), not-ok (answers step 2 with
-ok: false), bad-version (says protocol 2 in its hello). With PIDFILE it writes its process id
+ok: false), bad-version (says protocol 2 in its hello). One mode keeps the protocol: timed
+(announces timing and reports engine_seconds of exactly SECONDS_PER_STEP a step, whatever the
+wall time, so that a test can tell the reported time from the round trip's). With PIDFILE it writes its process id
 there first, so that a test can check it is gone afterwards.
 """
 import json
@@ -20,6 +22,8 @@ if len(sys.argv) > 2:
     with open(sys.argv[2], "w") as f:
         f.write(str(os.getpid()))
 
+SECONDS_PER_STEP = 0.5
+
 bodies = []
 steps = 0
 dt = 0.0
@@ -28,7 +32,7 @@ for line in sys.stdin:
     op = request["op"]
     if op == "hello":
         reply = {"ok": True, "protocol": 2 if mode == "bad-version" else 1, "name": "broken", "version": mode,
-                 "precision": "float64", "contacts": False, "timing": False}
+                 "precision": "float64", "contacts": False, "timing": mode == "timed"}
     elif op == "load":
         scene = request["scene"]
         dt = scene["dt"]
@@ -36,8 +40,11 @@ for line in sys.stdin:
                    "angular_velocity": [0, 0, 0]} for b in scene["bodies"]]
         reply = {"ok": True}
     elif op == "step":
-        steps += 1
+        n = request.get("n", 1)
+        steps += n
         reply = {"ok": True, "time": steps * dt, "bodies": bodies}
+        if mode == "timed":
+            reply["engine_seconds"] = SECONDS_PER_STEP * n
         if mode == "exit-at-step-3" and steps == 3:
             sys.stderr.write("broken engine: giving up at step 3\n")
             sys.stderr.flush()

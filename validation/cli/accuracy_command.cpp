@@ -7,6 +7,7 @@
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/io/setting.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/validation/accuracy.hpp"
 #include "boxpile/validation/cli/activity.hpp"
@@ -55,6 +56,13 @@ int run_accuracy_command(const AccuracyOptions& options) {
   settings.engines = options.engines.empty() ? default_engines(&DefaultLists::compare) : options.engines;
   check_engines(settings.engines, "--engines");
   settings.engine_settings = parse_set_options(options.set, settings.engines);
+  for (const auto& [engine, given] : settings.engine_settings) {
+    if (given.contains(time_step_setting().key)) {
+      throw UsageError("--set: " + engine + "." + time_step_setting().key +
+                       ": accuracy runs every engine at each step of --dt (and the outcome statistics at the "
+                       "scene's own), so a step of its own would do nothing; give the steps with --dt");
+    }
+  }
   if (!options.steps.empty()) settings.steps = options.steps;
   for (double dt : settings.steps) {
     if (!(dt > 0.0) || !std::isfinite(dt)) {
@@ -102,7 +110,7 @@ int run_accuracy_command(const AccuracyOptions& options) {
     }
     if (settings.outcomes.starts > 0) checked.push_back(scene.time.dt);  // the outcome runs' step
     for (double dt : checked) {
-      Scene at = scene_at_step(scene, dt);
+      Scene at = scene;
       apply_time_options(at, dt, std::nullopt, options.limits);
       for (const std::string& engine : settings.engines) {
         check_run_work(at, engine, settings.engine_settings.count(engine) ? settings.engine_settings.at(engine)
