@@ -16,7 +16,7 @@ namespace {
 
 void penalty_steps(benchmark::State& state, const std::string& scene_name) {
   Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + scene_name + ".json");
-  scene.solver.method = ContactSolver::Penalty;
+  scene.solver.method = "penalty";
   const long steps = step_count(scene.time);
   double substeps = 0.0, springs = 0.0;
   for (auto _ : state) {

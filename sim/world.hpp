@@ -38,9 +38,9 @@ class World final : public Engine {
     counters_.profile.enable(true);
     return true;
   }
-  std::string_view contact_method() const override {
-    return scene_.solver.method == ContactSolver::Penalty ? "penalty" : "impulse";
-  }
+  std::string_view contact_method() const override { return scene_.solver.method; }
+  // The method's own record of its work (ContactMethod::diagnostics), as `run --out` writes it.
+  nlohmann::json method_diagnostics() const { return method_->diagnostics(stats_, counters_, events_.size()); }
 
   const std::vector<RigidBody>& bodies() const { return bodies_; }
   std::vector<RigidBody>& bodies() { return bodies_; }

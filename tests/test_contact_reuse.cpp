@@ -194,7 +194,7 @@ TEST_CASE("the penalty method tests every pair at every step", "[contacts][reuse
   // Its springs read each contact's depth: a copy would leave it up to the tolerance stale, and a
   // box at rest on its springs would ring at 1e-10 m/s instead of resting to rounding.
   Scene s = scene_file("scenes/stack_5.json");
-  s.solver.method = ContactSolver::Penalty;
+  s.solver.method = "penalty";
   World w(s);
   for (int k = 0; k < 240; ++k) w.step();
   CHECK(w.counters().pairs_reused == 0);

@@ -24,7 +24,7 @@ Scene fixture(const std::string& name) {
 }
 
 Scene penalty(Scene s) {
-  s.solver.method = ContactSolver::Penalty;
+  s.solver.method = "penalty";
   return s;
 }
 

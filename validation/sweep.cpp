@@ -125,9 +125,11 @@ CellResult run_cell(const SweepGrid& grid, const CellSpec& cell) {
   r.scene_name = config.scene.name;
   r.steps = step_count(config.scene.time);
 
-  // "own-impulse" forces the method; "own" runs the scene's.
-  const bool own_impulse = cell.engine == "own-impulse" ||
-                           (cell.engine == "own" && config.scene.solver.method == ContactSolver::Impulse);
+  // The per-pass residuals are the impulse method's record (its row's diagnostics): an own
+  // engine that runs it ("own-impulse" forces it; "own" runs the scene's).
+  const bool own_impulse = find_engine_row(cell.engine) && find_engine_row(cell.engine)->runs_as
+                               ? find_engine_row(cell.engine)->runs_as(config.scene) == "own-impulse"
+                               : cell.engine == "own-impulse";
   RunMonitor monitor(config.scene);
   ConvergenceMeter meter(config.scene.solver);
   double least = cell_run(config, cell.engine, r.steps, &monitor, own_impulse ? &meter : nullptr);

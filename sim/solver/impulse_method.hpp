@@ -15,14 +15,20 @@ namespace boxpile {
 
 class ImpulseMethod final : public ContactMethod {
  public:
-  explicit ImpulseMethod(std::size_t body_count);
+  ImpulseMethod(const Scene& scene, std::size_t body_count);
+  bool speculative_margins() const override { return speculative_; }
+  bool reuses_contacts() const override { return reuse_; }
   void step(StepContext& ctx) override;
+  nlohmann::json diagnostics(const StepStats& stats, const WorldCounters& counters,
+                             std::size_t events) const override;
 
  private:
   // The stages of the method that are its own; the rest are the world's shared stages.
   void prepare_solver_contacts(const StepContext& ctx);
   void integrate_positions(StepContext& ctx);
 
+  bool speculative_ = true;  // solver.speculative_contacts
+  bool reuse_ = true;        // collision.reuse_contacts
   std::vector<SolverContact> solver_contacts_;
   // Per solver contact, its collision matrix over both bodies as prepared: shock propagation leaves
   // some contacts with a moving body's share alone, and a contact kept from the last step

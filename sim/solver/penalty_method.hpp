@@ -17,6 +17,8 @@ class PenaltyMethod final : public ContactMethod {
   PenaltyMethod(const PenaltyParameters& parameters, std::size_t body_count);
   int substeps() const override { return parameters_.substeps; }
   void step(StepContext& ctx) override;
+  nlohmann::json diagnostics(const StepStats& stats, const WorldCounters& counters,
+                             std::size_t events) const override;
   const PenaltyParameters& parameters() const { return parameters_; }
 
  private:
