@@ -45,7 +45,7 @@ void World::step() {
     find_contacts(h);
     counters_.profile.lap(Stage::contacts);
     StepContext ctx{scene_, bodies_,  ground_,  contacts_, reuse_.same_as_last_step(), wires_, time_ + k * h,
-                    h,      counters_, stats_,   events_};
+                    h,      counters_, events_};
     method_->step(ctx);
   }
   time_ += scene_.time.dt;

@@ -32,7 +32,7 @@ class FreeFall final : public ContactMethod {
     }
     ++steps_;
   }
-  nlohmann::json diagnostics(const StepStats&, const WorldCounters&, std::size_t) const override {
+  nlohmann::json diagnostics(std::size_t) const override {
     return {{"method", "freefall"}, {"steps", steps_}};
   }
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <thread>
 
+#include "boxpile/sim/solver/impulse_method.hpp"
 #include "boxpile/sim/solver/step_context.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/reference/registry.hpp"
@@ -25,7 +26,7 @@ class ConvergenceMeter {
         contact_(static_cast<std::size_t>(s.contact_passes), 0.0),
         shock_(static_cast<std::size_t>(s.shock_passes), 0.0) {}
 
-  void add(const StepStats& st) {
+  void add(const ImpulseStepStats& st) {
     if (st.collision_passes_used > 0) {
       accumulate(collision_, st.collision_residual.data(), st.collision_passes_used);
       ++collision_steps_;
@@ -78,7 +79,7 @@ double cell_run(const EngineConfig& config, const std::string& engine, long step
     hooks.step = [&](const StepView& v) {
       monitor->observe(v.step, v.states);
       if (meter && v.step > 0) {
-        if (const StepStats* stats = v.engine.solver_stats()) meter->add(*stats);
+        if (const auto* m = dynamic_cast<const ImpulseMethod*>(v.engine.solver_method())) meter->add(m->last_step_stats());
       }
     };
   }

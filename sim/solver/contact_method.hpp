@@ -40,11 +40,10 @@ class ContactMethod {
   virtual bool reuses_contacts() const { return false; }
   // Resolves the contact set of ctx and advances the bodies by ctx.dt.
   virtual void step(StepContext& ctx) = 0;
-  // What the method did, as `run --out` records it per frame ({"method": name, ...}), from the
-  // world's records of the last step (`stats`), of the run so far (`counters`) and its collision
-  // events. (The records still live in the world's shared StepStats and WorldCounters.)
-  virtual nlohmann::json diagnostics(const StepStats& stats, const WorldCounters& counters,
-                                     std::size_t events) const = 0;
+  // What the method did, from its own records (its statistics of the last step, its counters so
+  // far), as `run --out` records it per frame ({"method": name, ...}); `events` is the world's
+  // collision events so far.
+  virtual nlohmann::json diagnostics(std::size_t events) const = 0;
 };
 
 // A problem a method finds with a scene it is to run: the field (a JSON pointer into the scene

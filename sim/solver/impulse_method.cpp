@@ -50,15 +50,15 @@ void ImpulseMethod::step(StepContext& ctx) {
 
   // 1. The contact set (found by the world), as the solver sees it through the whole step.
   prepare_solver_contacts(ctx);
-  if (same_set_) ++ctx.counters.same_contact_sets;
+  if (same_set_) ++counters_.same_contact_sets;
   StepProfile& profile = ctx.counters.profile;
   profile.lap(Stage::prepare);
-  ImpulseStep step{ctx, SolverBodies{bodies, ctx.ground}, resting_bodies_, solver_contacts_};
-  ctx.stats = StepStats{};
+  stats_ = ImpulseStepStats{};
+  ImpulseStep step{ctx, SolverBodies{bodies, ctx.ground}, resting_bodies_, solver_contacts_, counters_.impulses, stats_};
 
   // 2. Collision loop: resolve approaching contacts with the scene's restitution.
   collision_loop(step);
-  ++ctx.counters.collision_loop_runs;
+  ++counters_.collision_loop_runs;
   profile.lap(Stage::collision_loop);
 
   // 3. External forces on the momenta: gravity, air damping; the wires take their share.
@@ -68,14 +68,14 @@ void ImpulseMethod::step(StepContext& ctx) {
 
   // 4. Contact loop: every contact of the set, restitution ramped up to 0.
   contact_loop(step);
-  ++ctx.counters.contact_loop_runs;
+  ++counters_.contact_loop_runs;
   enforce_wires(bodies, ctx.wires);
   profile.lap(Stage::contact_loop);
 
   // 5. Shock propagation: from the ground up, each level frozen once solved.
   if (s.shock_propagation) {
     shock_.run(step, same_set_);
-    ++ctx.counters.shock_propagation_runs;
+    ++counters_.shock_propagation_runs;
   }
   enforce_wires(bodies, ctx.wires);
   profile.lap(Stage::shock_propagation);
@@ -83,7 +83,7 @@ void ImpulseMethod::step(StepContext& ctx) {
   // Penetration recovery: pseudo-velocities that push overlaps apart (positions only).
   if (s.penetration_recovery > 0.0) {
     recovery_.run(step, s.shock_propagation ? &shock_ : nullptr);
-    ++ctx.counters.recovery_runs;
+    ++counters_.recovery_runs;
   }
   profile.lap(Stage::recovery);
 
@@ -260,7 +260,8 @@ ContactMethodRow impulse_method_row() {
   return row;
 }
 
-nlohmann::json ImpulseMethod::diagnostics(const StepStats& st, const WorldCounters&, std::size_t events) const {
+nlohmann::json ImpulseMethod::diagnostics(std::size_t events) const {
+  const ImpulseStepStats& st = stats_;
   // Passes used and the residual (largest approaching normal velocity, m/s) after each pass, and
   // shock propagation's largest velocity change in each pass (m/s), for the convergence plots and
   // rates.

@@ -53,13 +53,13 @@ void PenaltyMethod::step(StepContext& ctx) {
   integrate_positions(ctx);
   project_wires(ctx.bodies, ctx.wires);
   profile.lap(Stage::integration);
-  ++ctx.counters.penalty_substeps;
+  ++counters_.substeps;
 }
 
 void PenaltyMethod::apply_contact_forces(StepContext& ctx) {
   const bool friction = ctx.scene.effects.friction;
   const bool restitution = ctx.scene.effects.restitution;
-  PenaltyCounters& counters = ctx.counters.penalty;
+  PenaltyCounters& counters = counters_;
   anchors_.begin_step();
   for (const BodyContact& bc : ctx.contacts) {
     RigidBody& a = ctx.bodies[bc.body_a];
@@ -121,11 +121,11 @@ void PenaltyMethod::integrate_positions(StepContext& ctx) {
   }
 }
 
-nlohmann::json PenaltyMethod::diagnostics(const StepStats&, const WorldCounters& counters, std::size_t) const {
+nlohmann::json PenaltyMethod::diagnostics(std::size_t) const {
   // Its substeps and the work of its springs and anchors so far.
-  const PenaltyCounters& p = counters.penalty;
+  const PenaltyCounters& p = counters_;
   return {{"method", "penalty"},
-          {"substeps", counters.penalty_substeps},
+          {"substeps", p.substeps},
           {"spring_evaluations", p.spring_evaluations},
           {"anchors_created", p.anchors_created},
           {"sliding_points", p.sliding_points}};
