@@ -140,10 +140,9 @@ std::vector<EngineRow> built_in_rows() {
                            &own_box_plane}})));
   // One engine per contact method of the registry (sim/solver/contact_method.hpp), "own-NAME".
   for (const ContactMethodRow& m : contact_methods()) {
-    const bool built_in = m.name == "impulse" || m.name == "penalty";
-    EngineRow r = own_row("own-" + m.name, "boxpile's simulator, " + m.name + " method forced" +
-                                               (built_in ? " (built in)" : " (registered)"),
-                          m.name, {.main_job = built_in});
+    EngineRow r = own_row("own-" + m.name, "boxpile's simulator, " + m.name + " method forced (built in)", m.name,
+                          {.main_job = true});
+    // The palette's colours of the first two; a method registered later gets a spare colour.
     r.colour = m.name == "impulse" ? "#56B4E9" : m.name == "penalty" ? "#CC79A7" : "";
     rows.push_back(std::move(r));
   }

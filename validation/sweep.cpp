@@ -43,6 +43,10 @@ class ConvergenceMeter {
     }
   }
 
+  // Whether the run's engine steps with the impulse method (whose record this is).
+  void applies_to_run() { applies_ = true; }
+  bool applies() const { return applies_; }
+
   Convergence mean() const {
     Convergence c;
     c.collision = divided(collision_, collision_steps_);
@@ -66,6 +70,7 @@ class ConvergenceMeter {
   std::vector<double> collision_, contact_, shock_;
   long collision_steps_ = 0, contact_steps_ = 0, shock_steps_ = 0;
   double after_shock_ = 0.0, shock_passes_ = 0.0;
+  bool applies_ = false;
 };
 
 // One run of the cell: the seconds spent in Engine::step() alone (the engine's own, when it reports them). The measured run (given a
@@ -78,8 +83,10 @@ double cell_run(const EngineConfig& config, const std::string& engine, long step
   if (monitor) {
     hooks.step = [&](const StepView& v) {
       monitor->observe(v.step, v.states);
-      if (meter && v.step > 0) {
-        if (const auto* m = dynamic_cast<const ImpulseMethod*>(v.engine.solver_method())) meter->add(m->last_step_stats());
+      if (!meter) return;
+      if (const auto* m = dynamic_cast<const ImpulseMethod*>(v.engine.solver_method())) {
+        meter->applies_to_run();
+        if (v.step > 0) meter->add(m->last_step_stats());
       }
     };
   }
@@ -126,16 +133,13 @@ CellResult run_cell(const SweepGrid& grid, const CellSpec& cell) {
   r.scene_name = config.scene.name;
   r.steps = step_count(config.scene.time);
 
-  // The per-pass residuals are the impulse method's record (its row's diagnostics): an own
-  // engine that runs it ("own-impulse" forces it; "own" runs the scene's).
-  const bool own_impulse = find_engine_row(cell.engine) && find_engine_row(cell.engine)->runs_as
-                               ? find_engine_row(cell.engine)->runs_as(config.scene) == "own-impulse"
-                               : cell.engine == "own-impulse";
+  // The per-pass residuals are the impulse method's own record: a run whose engine steps with it
+  // has them.
   RunMonitor monitor(config.scene);
   ConvergenceMeter meter(config.scene.solver);
-  double least = cell_run(config, cell.engine, r.steps, &monitor, own_impulse ? &meter : nullptr);
+  double least = cell_run(config, cell.engine, r.steps, &monitor, &meter);
   r.measures = cell_measures(config.scene, monitor.measures(), monitor.evaluate());
-  if (own_impulse) r.convergence = meter.mean();
+  if (meter.applies()) r.convergence = meter.mean();
   for (r.timed_runs = 1; r.timed_runs < grid.repetitions; ++r.timed_runs) {
     least = std::min(least, cell_run(config, cell.engine, r.steps, nullptr, nullptr));
   }
