@@ -9,6 +9,7 @@
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/time_steps.hpp"
+#include "boxpile/sim/solver/penalty_method.hpp"
 #include "boxpile/sim/world.hpp"
 
 namespace boxpile {
@@ -16,7 +17,7 @@ namespace {
 
 void penalty_steps(benchmark::State& state, const std::string& scene_name) {
   Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + scene_name + ".json");
-  scene.solver.method = ContactSolver::Penalty;
+  scene.solver.method = "penalty";
   const long steps = step_count(scene.time);
   double substeps = 0.0, springs = 0.0;
   for (auto _ : state) {
@@ -24,8 +25,8 @@ void penalty_steps(benchmark::State& state, const std::string& scene_name) {
     World world(scene, "own-penalty");
     state.ResumeTiming();
     for (long k = 0; k < steps; ++k) world.step();
-    substeps = static_cast<double>(world.counters().penalty_substeps);
-    springs = static_cast<double>(world.counters().penalty.spring_evaluations);
+    substeps = static_cast<double>(world.method_as<PenaltyMethod>()->counters().substeps);
+    springs = static_cast<double>(world.method_as<PenaltyMethod>()->counters().spring_evaluations);
   }
   const auto per = benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert;
   state.counters["per_substep"] = benchmark::Counter(substeps, per);

@@ -52,20 +52,19 @@ EngineRow typed_row(std::string name, std::string title, const SettingsTable<S>&
 // settings of the other method are then not offered), none runs each scene's own. Its settings
 // are the scene's solver and collision keys (sim/io/own_settings.hpp): given ones overwrite the
 // scene's.
-bool offered(const SettingInfo& s, std::optional<ContactSolver> method) {
+bool offered(const SettingInfo& s, const std::optional<std::string>& method) {
   if (!method) return true;
-  const std::optional<ContactSolver> group = setting_group_method(s);
-  return !group || group == method;
+  return s.group.empty() || s.group == *method;
 }
 
-Scene own_scene(const Scene& scene, const json& settings, std::optional<ContactSolver> method) {
+Scene own_scene(const Scene& scene, const json& settings, const std::optional<std::string>& method) {
   Scene s = scene;
   if (method) s.solver.method = *method;
   own_settings_table().apply(s, settings);
   return s;
 }
 
-EngineRow own_row(std::string name, std::string title, std::optional<ContactSolver> method, DefaultLists in,
+EngineRow own_row(std::string name, std::string title, std::optional<std::string> method, DefaultLists in,
                   std::vector<DetectorInfo> detectors = {}) {
   EngineRow row;
   row.name = name;
@@ -77,17 +76,16 @@ EngineRow own_row(std::string name, std::string title, std::optional<ContactSolv
   row.scene_with = [](const Scene& scene, const json& settings) { return own_scene(scene, settings, std::nullopt); };
   row.work_per_step = [method](const Scene& scene, const json& settings) -> long {
     const Scene s = own_scene(scene, settings, method);
-    return s.solver.method == ContactSolver::Penalty ? derive_penalty_parameters(s).substeps : 1;
+    const ContactMethodRow& m = contact_method(s.solver.method);
+    return m.work_per_step ? m.work_per_step(s) : 1;
   };
   row.time_step_problem = [method](const Scene& scene, const json& settings) -> std::string {
     const Scene s = own_scene(scene, settings, method);
-    if (s.solver.method != ContactSolver::Penalty) return {};
-    return penalty_parameters_problem(s, derive_penalty_parameters(s));
+    const ContactMethodRow& m = contact_method(s.solver.method);
+    return m.time_step_problem ? m.time_step_problem(s) : std::string();
   };
   if (!method) {
-    row.runs_as = [](const Scene& scene) -> std::string {
-      return scene.solver.method == ContactSolver::Penalty ? "own-penalty" : "own-impulse";
-    };
+    row.runs_as = [](const Scene& scene) -> std::string { return "own-" + scene.solver.method; };
   }
   row.settings = [method] {
     std::vector<SettingInfo> out;
@@ -140,10 +138,14 @@ std::vector<EngineRow> built_in_rows() {
                          {.compare = true, .stability = true},
                          {{"own", "boxpile's separating-axis test with face clipping", false, &own_box_box,
                            &own_box_plane}})));
-  rows.push_back(coloured("#56B4E9", own_row("own-impulse", "boxpile's simulator, impulse method forced (built in)",
-                                             ContactSolver::Impulse, {.main_job = true})));
-  rows.push_back(coloured("#CC79A7", own_row("own-penalty", "boxpile's simulator, penalty method forced (built in)",
-                                             ContactSolver::Penalty, {.main_job = true})));
+  // One engine per contact method of the registry (sim/solver/contact_method.hpp), "own-NAME".
+  for (const ContactMethodRow& m : contact_methods()) {
+    EngineRow r = own_row("own-" + m.name, "boxpile's simulator, " + m.name + " method forced (built in)", m.name,
+                          {.main_job = true});
+    // The palette's colours of the first two; a method registered later gets a spare colour.
+    r.colour = m.name == "impulse" ? "#56B4E9" : m.name == "penalty" ? "#CC79A7" : "";
+    rows.push_back(std::move(r));
+  }
   rows.push_back(coloured("#D55E00", typed_row<OdeEngine>(
       "ode", "ODE 0.16, double precision (Debian libode-dev, pkg-config ode)", &ode_settings_table,
       {.compare = true, .stability = true, .main_job = true},

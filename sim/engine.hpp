@@ -25,7 +25,7 @@ class EngineRefused : public std::runtime_error {
 };
 
 struct CollisionEvent;  // sim/solver/step_context.hpp
-struct StepStats;
+class ContactMethod;  // sim/solver/contact_method.hpp
 struct WorldCounters;
 
 // A body's state as every engine reports it. `position` and `orientation` are the scene file's
@@ -59,9 +59,9 @@ class Engine {
   // --- diagnostics: what an engine can tell beside its states (by default, nothing) ---------
   // The collision events its solver recorded so far (ours); nullptr when it records none.
   virtual const std::vector<CollisionEvent>* collision_events() const { return nullptr; }
-  // Its solver's statistics of the last step, and its counters so far (ours); nullptr when it
-  // keeps none.
-  virtual const StepStats* solver_stats() const { return nullptr; }
+  // Our solver's contact method (its own records: ContactMethod::diagnostics), and the counters
+  // of the stages every method shares; nullptr for the other engines.
+  virtual const ContactMethod* solver_method() const { return nullptr; }
   virtual const WorldCounters* solver_counters() const { return nullptr; }
   // Switches on the per-stage profile of its steps (solver_counters()->profile); false when it
   // keeps none.

@@ -23,10 +23,8 @@ constexpr double kMarginPerEdge = 0.01;
 constexpr double kSlopPerEdge = 1e-3;
 }  // namespace
 
-void set_impulse_variant(SolverSettings& solver, CollisionSettings& collision, ImpulseVariant variant) {
+void set_impulse_additions(SolverSettings& solver, CollisionSettings& collision, bool on) {
   const SolverSettings ours;  // every addition at our default
-  const bool on = variant == ImpulseVariant::Boxpile;
-  solver.variant = variant;
   solver.pair_impulses = on;
   solver.accumulated_impulses = on;
   solver.speculative_contacts = on;

@@ -2,6 +2,8 @@
 // in sim/io/scene_loader.hpp and the format is documented in docs/scene-format.md.
 #pragma once
 
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,11 +47,7 @@ struct CollisionSettings {
   bool reuse_contacts = true;
 };
 
-enum class ContactSolver { Impulse, Penalty };
 enum class PositionIntegrator { ExplicitEuler, SemiImplicitEuler };
-// The impulse method as a whole: ours (every addition below on), or the method exactly as the lab
-// text gives it (every addition off; docs/solver.md, "The lab method and our additions").
-enum class ImpulseVariant { Boxpile, Lab };
 
 // The penalty method's settings (docs/penalty.md). Each one left unset is derived from the
 // scene when the world is built (sim/solver/penalty_parameters.hpp).
@@ -61,11 +59,17 @@ struct PenaltySettings {
 };
 
 struct SolverSettings {
-  ContactSolver method = ContactSolver::Impulse;
+  // The contact method: a row of the registry (sim/solver/contact_method.hpp), by its name.
+  std::string method = "impulse";
   PenaltySettings penalty;  // read only by the penalty method
-  // The impulse method's variant; choosing one sets each addition of ours to that variant's value
-  // (set_impulse_variant), and an addition given beside it changes it from there.
-  ImpulseVariant variant = ImpulseVariant::Boxpile;
+  // The impulse method's variant (a row of its variants): ours, "boxpile" (every addition below
+  // on), or the method exactly as the lab text gives it, "lab" (every addition off; docs/solver.md,
+  // "The lab method and our additions"). Choosing one sets each addition to that variant's value
+  // (set_impulse_additions), and an addition given beside it changes it from there.
+  std::string variant = "boxpile";
+  // The settings of a registered method that keeps no fields of its own here, by key (numbers,
+  // and booleans as 0 or 1); read only by that method's rows.
+  std::map<std::string, double, std::less<>> method_values;
   // Our additions to the lab text's method, each one a switch (docs/solver.md). Off, the stage is
   // the lab text's:
   bool pair_impulses = true;         // collision loop: a pair's points solved together (off: one by one)
@@ -89,11 +93,10 @@ struct SolverSettings {
   int recovery_passes = 20;  // most per group of a phase (each shock level, then all contacts), fewer once converged
 };
 
-// Sets `variant` and every addition of ours to that variant's value: Boxpile turns each one on
-// (with semi-implicit Euler, penetration recovery 0.2, shock propagation and contacts kept at
-// rest), Lab turns each one off (explicit Euler, no recovery, no shock propagation, every pair
-// tested at every step).
-void set_impulse_variant(SolverSettings& solver, CollisionSettings& collision, ImpulseVariant variant);
+// Sets every addition of ours on (the "boxpile" variant: semi-implicit Euler, penetration recovery
+// 0.2, shock propagation and contacts kept at rest) or off (the "lab" variant: explicit Euler, no
+// recovery, no shock propagation, every pair tested at every step).
+void set_impulse_additions(SolverSettings& solver, CollisionSettings& collision, bool on);
 
 // The contact margin and penetration slop for boxes whose smallest edge is `smallest_edge` (m):
 // the settings' values, or less for small boxes (docs/solver.md, "Lengths relative to the boxes").

@@ -31,7 +31,7 @@ World::World(const Scene& scene, std::string name)
   const StepStorage storage{bodies_.size()};
   contacts_.reserve(storage.contacts());
   reuse_.reserve(bodies_.size(), storage.contacts(), storage.pairs() + bodies_.size(),
-                 scene_.collision.reuse_contacts && scene_.solver.method == ContactSolver::Impulse);
+                 method_->reuses_contacts());
   events_.reserve(storage.events());
   broadphase_.reserve(storage);
 }
@@ -45,7 +45,7 @@ void World::step() {
     find_contacts(h);
     counters_.profile.lap(Stage::contacts);
     StepContext ctx{scene_, bodies_,  ground_,  contacts_, reuse_.same_as_last_step(), wires_, time_ + k * h,
-                    h,      counters_, stats_,   events_};
+                    h,      counters_, events_};
     method_->step(ctx);
   }
   time_ += scene_.time.dt;
@@ -68,7 +68,7 @@ void World::update_margins(double dt) {
   // meets what it would reach within the step as a speculative contact instead of tunnelling
   // into it. A pair gets the smaller of its two contact margins and both motions. Without
   // speculative contacts (the lab text's impulse method) only touching points are contacts.
-  if (scene_.solver.method == ContactSolver::Impulse && !scene_.solver.speculative_contacts) {
+  if (!method_->speculative_margins()) {
     std::fill(base_margins_.begin(), base_margins_.end(), 0.0);
     std::fill(margins_.begin(), margins_.end(), 0.0);
     return;

@@ -32,20 +32,24 @@ class World final : public Engine {
   void body_states(std::vector<BodyState>& out) const override;
   void contacts(std::vector<BodyContact>& out) const override { out = contacts_; }
   const std::vector<CollisionEvent>* collision_events() const override { return &events_; }
-  const StepStats* solver_stats() const override { return &stats_; }
   const WorldCounters* solver_counters() const override { return &counters_; }
   bool enable_profile() override {
     counters_.profile.enable(true);
     return true;
   }
-  std::string_view contact_method() const override {
-    return scene_.solver.method == ContactSolver::Penalty ? "penalty" : "impulse";
+  std::string_view contact_method() const override { return scene_.solver.method; }
+  // The method's own record of its work (ContactMethod::diagnostics), as `run --out` writes it.
+  nlohmann::json method_diagnostics() const { return method_->diagnostics(events_.size()); }
+  const ContactMethod* solver_method() const override { return method_.get(); }
+  // The method as the type it is, or none (the tests and benchmarks read its own counters).
+  template <class M>
+  const M* method_as() const {
+    return dynamic_cast<const M*>(method_.get());
   }
 
   const std::vector<RigidBody>& bodies() const { return bodies_; }
   std::vector<RigidBody>& bodies() { return bodies_; }
   const WorldCounters& counters() const { return counters_; }
-  const StepStats& last_step_stats() const { return stats_; }
   const std::vector<CollisionEvent>& events() const { return events_; }
   const Scene& scene() const { return scene_; }
   const std::vector<WireJoint>& wires() const { return wires_; }
@@ -78,7 +82,6 @@ class World final : public Engine {
   std::vector<char> fixed_;              // per body, 1 when fixed, for the broadphase
   std::vector<CollisionEvent> events_;
   WorldCounters counters_;
-  StepStats stats_;
 };
 
 }  // namespace boxpile

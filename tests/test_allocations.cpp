@@ -61,7 +61,7 @@ TEST_CASE("1,000 steps of pile_100 allocate nothing", "[allocations]") {
 
 TEST_CASE("a penalty step allocates nothing once the first steps have sized the storage", "[allocations][penalty]") {
   Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/pyramid.json");
-  scene.solver.method = ContactSolver::Penalty;
+  scene.solver.method = "penalty";
   World world(scene);
   // Half a second sizes the anchors' and springs' storage; the next half second reuses it.
   const int half_second = static_cast<int>(std::lround(0.5 / scene.time.dt));

@@ -11,6 +11,8 @@
 #include "boxpile/sim/metrics.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/sim/solver/penalty_parameters.hpp"
+#include "boxpile/sim/solver/impulse_method.hpp"
+#include "boxpile/sim/solver/penalty_method.hpp"
 #include "boxpile/sim/world.hpp"
 
 using namespace boxpile;
@@ -24,7 +26,7 @@ Scene fixture(const std::string& name) {
 }
 
 Scene penalty(Scene s) {
-  s.solver.method = ContactSolver::Penalty;
+  s.solver.method = "penalty";
   return s;
 }
 
@@ -87,7 +89,7 @@ TEST_CASE("a box at rest sinks m g / (4 k) on its four corners", "[penalty]") {
   INFO("sank " << sink << " m, expected " << expected << " m (k = " << p.stiffness << " N/m)");
   CHECK(std::abs(sink - expected) <= 0.05 * expected);
   // The four corners began together and never parted: one anchor each, kept by feature id.
-  CHECK(w.counters().penalty.anchors_created == 4);
+  CHECK(w.method_as<PenaltyMethod>()->counters().anchors_created == 4);
 }
 
 TEST_CASE("a stack of five sinks the sum over its levels, level j carrying j boxes", "[penalty]") {
@@ -204,13 +206,13 @@ TEST_CASE("static friction holds a box placed at rest on a slope from its first 
   const Vec3 start = w.bodies()[0].x;
   run(w, 0.5);
   const Vec3 settled = w.bodies()[0].x;
-  const auto slid_early = w.counters().penalty.sliding_points;
+  const auto slid_early = w.method_as<PenaltyMethod>()->counters().sliding_points;
   run(w, 1.5);
   const double moved = (w.bodies()[0].x - start).norm();
   const double creep = (w.bodies()[0].x - settled).norm();
   const double settle = s.bodies[0].mass * kG / (4.0 * p.stiffness);
   INFO("moved " << moved << " m in 2 s, the springs' settling " << settle << " m; crept " << creep
-                << " m after 0.5 s; sliding point-steps " << slid_early << " then " << w.counters().penalty.sliding_points);
+                << " m after 0.5 s; sliding point-steps " << slid_early << " then " << w.method_as<PenaltyMethod>()->counters().sliding_points);
   CHECK(moved < 2.0 * settle);
   CHECK(creep < 1e-5);
   CHECK(w.bodies()[0].v.norm() < 1e-6);
@@ -316,10 +318,10 @@ TEST_CASE("the scene's method is the one that runs", "[penalty]") {
   World pen(penalty(fixture("box_at_rest")));
   run(impulse, 0.1);
   run(pen, 0.1);
-  CHECK(impulse.counters().contact_loop_runs > 0);
-  CHECK(impulse.counters().penalty_substeps == 0);
-  CHECK(pen.counters().contact_loop_runs == 0);
-  CHECK(pen.counters().penalty_substeps ==
+  CHECK(impulse.method_as<ImpulseMethod>()->counters().contact_loop_runs > 0);
+  CHECK(impulse.method_as<PenaltyMethod>() == nullptr);
+  CHECK(pen.method_as<ImpulseMethod>() == nullptr);
+  CHECK(pen.method_as<PenaltyMethod>()->counters().substeps ==
         static_cast<std::uint64_t>(steps_for(pen.scene(), 0.1) * derive_penalty_parameters(pen.scene()).substeps));
 }
 

@@ -31,7 +31,8 @@ struct Stack {
   std::vector<char> same;          // nor this
   std::vector<WireJoint> wires;
   WorldCounters counters;
-  StepStats stats;
+  ImpulseCounters impulses;
+  ImpulseStepStats stats;
   std::vector<CollisionEvent> events;
   std::vector<SolverContact> contacts;
   SolverBodyArray resting;
@@ -78,8 +79,8 @@ struct Stack {
 
   // Shock propagation's levels, then recovery with or without skipping idle phases.
   void solve(bool skip_idle) {
-    StepContext ctx{scene, bodies, ground, found, same, wires, 0.0, kDt, counters, stats, events};
-    ImpulseStep step{ctx, SolverBodies{bodies, ground}, resting, contacts};
+    StepContext ctx{scene, bodies, ground, found, same, wires, 0.0, kDt, counters, events};
+    ImpulseStep step{ctx, SolverBodies{bodies, ground}, resting, contacts, impulses, stats};
     shock.run(step);
     recovery.skip_idle_phases(skip_idle);
     recovery.run(step, &shock);
@@ -160,8 +161,8 @@ TEST_CASE("shock propagation on the last run's contact set keeps its levels and 
     }
   };
   auto run = [](Stack& s, bool same_contacts) {
-    StepContext ctx{s.scene, s.bodies, s.ground, s.found, s.same, s.wires, 0.0, kDt, s.counters, s.stats, s.events};
-    ImpulseStep step{ctx, SolverBodies{s.bodies, s.ground}, s.resting, s.contacts};
+    StepContext ctx{s.scene, s.bodies, s.ground, s.found, s.same, s.wires, 0.0, kDt, s.counters, s.events};
+    ImpulseStep step{ctx, SolverBodies{s.bodies, s.ground}, s.resting, s.contacts, s.impulses, s.stats};
     s.shock.run(step, same_contacts);
   };
 

@@ -12,6 +12,7 @@
 #include "boxpile/sim/solver/impulse.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/sim/body.hpp"
+#include "boxpile/sim/solver/impulse_method.hpp"
 #include "boxpile/sim/world.hpp"
 #include "boxpile/tests/support/geometry.hpp"
 
@@ -163,7 +164,7 @@ TEST_CASE("a shock-propagation level stops once converged, or once its passes st
   {
     World w(fixture("stack_10"));
     run(w, 240);
-    const StepStats& st = w.last_step_stats();
+    const ImpulseStepStats& st = w.method_as<ImpulseMethod>()->last_step_stats();
     CHECK(st.shock_levels == 10);
     CHECK(st.shock_pass_count < 30);
     CHECK(st.shock_stalled_levels == 0);
@@ -177,9 +178,9 @@ TEST_CASE("a shock-propagation level stops once converged, or once its passes st
     long passes = 0, levels = 0;
     for (int k = 0; k < 480; ++k) {
       w.step();
-      stalled += w.last_step_stats().shock_stalled_levels;
-      passes += w.last_step_stats().shock_passes_used;
-      levels += w.last_step_stats().shock_levels;
+      stalled += w.method_as<ImpulseMethod>()->last_step_stats().shock_stalled_levels;
+      passes += w.method_as<ImpulseMethod>()->last_step_stats().shock_passes_used;
+      levels += w.method_as<ImpulseMethod>()->last_step_stats().shock_levels;
     }
     CHECK(stalled > 0);
     INFO("passes per level: " << static_cast<double>(passes) / static_cast<double>(levels));
@@ -304,10 +305,10 @@ TEST_CASE("a scene pays only for the effects it lists", "[solver][effects]") {
   s.effects.damping = false;
   World w(s);
   run(w, 10);
-  CHECK(w.counters().impulses.friction_evaluations == 0);
+  CHECK(w.method_as<ImpulseMethod>()->counters().impulses.friction_evaluations == 0);
   CHECK(w.counters().damping_applications == 0);
   CHECK(w.counters().gravity_applications == 10 * 5);
-  CHECK(w.counters().impulses.normal_impulses > 0);
+  CHECK(w.method_as<ImpulseMethod>()->counters().impulses.normal_impulses > 0);
 
   s.effects.gravity = false;
   s.effects.friction = true;
@@ -366,7 +367,7 @@ TEST_CASE("penetration recovery pushes an overlap out without adding kinetic ene
     World plain(s);
     for (int k = 0; k < 240; ++k) plain.step();
     CHECK(measure_penetration(plain.bodies(), s.ground).depth == Approx(0.05).margin(1e-6));
-    CHECK(plain.counters().recovery_runs == 0);
+    CHECK(plain.method_as<ImpulseMethod>()->counters().recovery_runs == 0);
   }
 }
 

@@ -19,6 +19,7 @@
 #include "boxpile/sim/solver/impulse_step.hpp"
 #include "boxpile/sim/solver/sticking_solve.hpp"
 #include "boxpile/sim/solver/solver_body.hpp"
+#include "boxpile/sim/solver/impulse_method.hpp"
 #include "boxpile/sim/world.hpp"
 
 using namespace boxpile;
@@ -131,7 +132,7 @@ int steps_with_passes(World& w, int steps) {
   int count = 0;
   for (int k = 0; k < steps; ++k) {
     w.step();
-    const StepStats& st = w.last_step_stats();
+    const ImpulseStepStats& st = w.method_as<ImpulseMethod>()->last_step_stats();
     if (st.shock_pass_count != 1 || st.shock_passes_used != st.shock_levels) ++count;
   }
   return count;
@@ -321,7 +322,7 @@ TEST_CASE("every layer of the resting Jenga tower is solved directly at every st
   // left a block too few points or points on a line, and 13% of the layers went to the passes.
   World w(load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/hard/jenga.json"));
   CHECK(steps_with_passes(w, 480) == 0);
-  CHECK(w.last_step_stats().shock_levels == 18);
+  CHECK(w.method_as<ImpulseMethod>()->last_step_stats().shock_levels == 18);
   check_at_rest(w);
 }
 
@@ -331,7 +332,7 @@ TEST_CASE("a resting stack's shock levels are each solved directly in one pass",
   // stack keeps nothing of its velocity.
   World w(load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/stack_10.json"));
   for (int k = 0; k < 240; ++k) w.step();
-  const StepStats& st = w.last_step_stats();
+  const ImpulseStepStats& st = w.method_as<ImpulseMethod>()->last_step_stats();
   CHECK(st.shock_levels == 10);
   CHECK(st.shock_passes_used == 10);
   CHECK(st.shock_pass_count == 1);
@@ -352,6 +353,6 @@ TEST_CASE("every group of a resting pyramid on corners is solved directly at eve
   scene.solver.shock_passes = 20;
   World w(scene);
   CHECK(steps_with_passes(w, 600) == 0);
-  CHECK(w.last_step_stats().shock_levels == 6);
+  CHECK(w.method_as<ImpulseMethod>()->last_step_stats().shock_levels == 6);
   check_at_rest(w);
 }

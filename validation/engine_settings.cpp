@@ -58,10 +58,10 @@ void apply_settings(std::string_view engine, const json& settings, EngineConfig&
   }
 }
 
-std::optional<ContactSolver> setting_method(std::string_view engine, std::string_view key) {
+std::optional<std::string> setting_method(std::string_view engine, std::string_view key) {
   if (engine != kOwn) return std::nullopt;
   for (const SettingInfo& s : engine_settings(engine))
-    if (s.key == key) return setting_group_method(s);
+    if (s.key == key) return s.group.empty() ? std::nullopt : std::optional<std::string>(s.group);
   return std::nullopt;
 }
 

@@ -36,7 +36,7 @@ void apply_settings(std::string_view engine, const nlohmann::json& settings, Eng
 
 // The contact method a setting of "own" belongs to (it runs each scene's method); empty for the
 // settings of both methods and for every other engine (which forces its method or has none).
-std::optional<ContactSolver> setting_method(std::string_view engine, std::string_view key);
+std::optional<std::string> setting_method(std::string_view engine, std::string_view key);
 
 // Settings given as "key=value" words for one engine: each value read as JSON (5, 0.2, true,
 // "world") or, when that fails, as a string (world); checked like a grid's. InputError naming

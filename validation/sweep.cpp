@@ -8,6 +8,7 @@
 #include <fstream>
 #include <thread>
 
+#include "boxpile/sim/solver/impulse_method.hpp"
 #include "boxpile/sim/solver/step_context.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/reference/registry.hpp"
@@ -25,7 +26,7 @@ class ConvergenceMeter {
         contact_(static_cast<std::size_t>(s.contact_passes), 0.0),
         shock_(static_cast<std::size_t>(s.shock_passes), 0.0) {}
 
-  void add(const StepStats& st) {
+  void add(const ImpulseStepStats& st) {
     if (st.collision_passes_used > 0) {
       accumulate(collision_, st.collision_residual.data(), st.collision_passes_used);
       ++collision_steps_;
@@ -41,6 +42,10 @@ class ConvergenceMeter {
       shock_passes_ += st.shock_passes_used;
     }
   }
+
+  // Whether the run's engine steps with the impulse method (whose record this is).
+  void applies_to_run() { applies_ = true; }
+  bool applies() const { return applies_; }
 
   Convergence mean() const {
     Convergence c;
@@ -65,6 +70,7 @@ class ConvergenceMeter {
   std::vector<double> collision_, contact_, shock_;
   long collision_steps_ = 0, contact_steps_ = 0, shock_steps_ = 0;
   double after_shock_ = 0.0, shock_passes_ = 0.0;
+  bool applies_ = false;
 };
 
 // One run of the cell: the seconds spent in Engine::step() alone (the engine's own, when it reports them). The measured run (given a
@@ -77,8 +83,10 @@ double cell_run(const EngineConfig& config, const std::string& engine, long step
   if (monitor) {
     hooks.step = [&](const StepView& v) {
       monitor->observe(v.step, v.states);
-      if (meter && v.step > 0) {
-        if (const StepStats* stats = v.engine.solver_stats()) meter->add(*stats);
+      if (!meter) return;
+      if (const auto* m = dynamic_cast<const ImpulseMethod*>(v.engine.solver_method())) {
+        meter->applies_to_run();
+        if (v.step > 0) meter->add(m->last_step_stats());
       }
     };
   }
@@ -125,14 +133,13 @@ CellResult run_cell(const SweepGrid& grid, const CellSpec& cell) {
   r.scene_name = config.scene.name;
   r.steps = step_count(config.scene.time);
 
-  // "own-impulse" forces the method; "own" runs the scene's.
-  const bool own_impulse = cell.engine == "own-impulse" ||
-                           (cell.engine == "own" && config.scene.solver.method == ContactSolver::Impulse);
+  // The per-pass residuals are the impulse method's own record: a run whose engine steps with it
+  // has them.
   RunMonitor monitor(config.scene);
   ConvergenceMeter meter(config.scene.solver);
-  double least = cell_run(config, cell.engine, r.steps, &monitor, own_impulse ? &meter : nullptr);
+  double least = cell_run(config, cell.engine, r.steps, &monitor, &meter);
   r.measures = cell_measures(config.scene, monitor.measures(), monitor.evaluate());
-  if (own_impulse) r.convergence = meter.mean();
+  if (meter.applies()) r.convergence = meter.mean();
   for (r.timed_runs = 1; r.timed_runs < grid.repetitions; ++r.timed_runs) {
     least = std::min(least, cell_run(config, cell.engine, r.steps, nullptr, nullptr));
   }

@@ -82,15 +82,13 @@ void product(const std::vector<std::pair<std::string, std::vector<nlohmann::json
 void check_methods(const SweepGrid& grid, const JsonNode& engines) {
   for (const GridEngine& engine : grid.engines) {
     for (const auto& axis : engine.axes) {
-      const std::optional<ContactSolver> method = setting_method(engine.name, axis.first);
+      const std::optional<std::string> method = setting_method(engine.name, axis.first);
       if (!method) continue;
       for (const GridScene& s : grid.scenes) {
         if (s.scene.solver.method == *method) continue;
-        const bool impulse = *method == ContactSolver::Impulse;
         engines.at(engine.name).at(axis.first).fail(
-            std::string("a setting of the ") + (impulse ? "impulse" : "penalty") + " method, but scene " + s.path +
-            " uses the " + (impulse ? "penalty" : "impulse") + " method; use engine \"" +
-            (impulse ? "own-impulse" : "own-penalty") + "\" to force one");
+            "a setting of the " + *method + " method, but scene " + s.path + " uses the " + s.scene.solver.method +
+            " method; use engine \"own-" + *method + "\" to force one");
       }
     }
   }

@@ -1,10 +1,11 @@
 // Our simulator's settings table: every key of a scene's `solver` and `collision` objects
 // (SolverSettings, PenaltySettings, CollisionSettings in sim/scene.hpp and sim/collision/
-// collide.hpp), declared once. The scene loader reads those objects through it, `--set own.KEY`
-// and sweep grids name the same rows, `boxpile settings` and docs/scene-format.md list them.
-// A row's key is the name on the command line and in grids; its scene_key says where a scene
-// file gives it; its group is the contact method that reads it ("impulse", "penalty"; empty for
-// both).
+// collide.hpp), declared once: the few every method reads here, each method's in its row of the
+// registry (sim/solver/contact_method.hpp). The scene loader reads those objects through it,
+// `--set own.KEY` and sweep grids name the same rows, `boxpile settings` and docs/scene-format.md
+// list them. A row's key is the name on the command line and in grids; its scene_key says where a
+// scene file gives it; its group is the contact method that reads it (a registry row's name;
+// empty for every method).
 #pragma once
 
 #include <optional>
@@ -27,9 +28,11 @@ inline constexpr double kStiffestSpring = 1e12;
 // collision fields; the scene's bodies are left alone).
 const SettingsTable<Scene>& own_settings_table();
 
-// The contact method whose group a setting belongs to; none for the settings of both.
-std::optional<ContactSolver> setting_group_method(const SettingInfo& setting);
-// "impulse" or "penalty".
-std::string_view method_name(ContactSolver method);
+// A boolean setting that is one member of one part of the scene (solver or collision).
+template <auto Part, auto Member>
+Setting<Scene> scene_flag(SettingInfo info) {
+  return {std::move(info), [](Scene& s, const nlohmann::json& v) { (s.*Part).*Member = v.get<bool>(); },
+          [](const Scene& s) { return nlohmann::json((s.*Part).*Member); }};
+}
 
 }  // namespace boxpile

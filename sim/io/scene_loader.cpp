@@ -16,6 +16,7 @@
 #include "boxpile/sim/collision/collide.hpp"
 #include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/sim/io/own_settings.hpp"
+#include "boxpile/sim/solver/contact_method.hpp"
 #include "boxpile/sim/solver/penalty_parameters.hpp"
 #include "boxpile/sim/time_steps.hpp"
 
@@ -42,9 +43,6 @@ constexpr std::array<bool Effects::*, 5> kEffectFlags = {
     &Effects::gravity, &Effects::friction, &Effects::restitution, &Effects::damping,
     &Effects::gyroscopic};
 
-constexpr std::array<std::string_view, 2> kSolverMethods = {"impulse", "penalty"};
-constexpr std::array<ContactSolver, 2> kSolverMethodValues = {ContactSolver::Impulse,
-                                                              ContactSolver::Penalty};
 
 // The keys of the scene's `solver` and `collision` objects are the rows of our settings table
 // (sim/io/own_settings.hpp) whose scene_key lies in that object: one declaration (range, kind,
@@ -147,16 +145,16 @@ Damping read_damping(const JsonNode& node) {
 void read_solver(const JsonNode& node, Scene& scene) {
   expect_section_keys(node, "solver", {"method"});
   if (const auto m = node.find("method")) {
-    scene.solver.method = kSolverMethodValues[m->choice(kSolverMethods, "solver method")];
+    const std::vector<std::string_view> names = contact_method_names();
+    scene.solver.method = std::string(names[m->choice(names, "solver method")]);
   }
-  const std::string_view method = method_name(scene.solver.method);
+  const std::string& method = scene.solver.method;
   for (const SectionRow& r : section_rows("solver")) {
-    const std::optional<ContactSolver> group = setting_group_method(r.row->info);
-    if (!group || *group == scene.solver.method) continue;
+    const std::string& group = r.row->info.group;
+    if (group.empty() || group == method) continue;
     if (const auto k = node.find(r.key)) {
-      const std::string owner(method_name(*group));
-      k->fail("belongs to the " + owner + " method, but \"method\" is " + in_quotes(method) +
-              ": remove it or set \"method\": " + in_quotes(owner));
+      k->fail("belongs to the " + group + " method, but \"method\" is " + in_quotes(method) +
+              ": remove it or set \"method\": " + in_quotes(group));
     }
   }
   read_section_values(node, "solver", scene);
@@ -446,44 +444,20 @@ SceneTruth read_truth(const JsonNode& node, const std::vector<BodyDesc>& bodies,
   return t;
 }
 
-// Static friction is read by the penalty method's friction springs alone.
-void refuse_static_friction(const JsonNode& root) {
-  auto refuse = [](const std::optional<JsonNode>& material) {
-    if (!material) return;
-    if (const auto mu_s = material->find("static_friction")) {
-      mu_s->fail("belongs to the penalty method (the impulse method has one coefficient, \"friction\"), "
-                 "but solver.method is \"impulse\": remove it or set solver.method to \"penalty\"");
-    }
-  };
-  refuse(root.find("material"));
-  const JsonNode bodies = root.at("bodies");
-  for (std::size_t i = 0; i < bodies.array_size(); ++i) refuse(bodies.element(i).find("material"));
+// The field a JSON pointer names in the scene file, for its error message.
+JsonNode at_tokens(const JsonNode& node, const std::vector<std::string>& tokens, std::size_t k) {
+  if (k == tokens.size()) return node;
+  return at_tokens(node.json().is_array() ? node.element(std::stoul(tokens[k])) : node.at(tokens[k]), tokens, k + 1);
 }
 
-// A damping set for every pair would leave the materials' restitution unread; a scene whose dt
-// breaks the stability bound, with substeps left to derive, is refused naming the bound; and
-// collision.reuse_contacts is the impulse method's (the penalty method tests every pair).
-void check_penalty_settings(const JsonNode& root, const Scene& s) {
-  if (const auto c = root.find("collision"); c && c->find("reuse_contacts")) {
-    c->at("reuse_contacts").fail(
-        "belongs to the impulse method, but solver.method is \"penalty\": the penalty method tests every pair "
-        "at every step (its springs read each contact's depth); remove it or set solver.method to \"impulse\"");
+JsonNode at_pointer(const JsonNode& root, const std::string& pointer) {
+  std::vector<std::string> tokens;
+  for (std::size_t start = 1; start <= pointer.size();) {
+    const std::size_t end = std::min(pointer.find('/', start), pointer.size());
+    tokens.push_back(pointer.substr(start, end - start));
+    start = end + 1;
   }
-  if (s.solver.penalty.damping && s.effects.restitution) {
-    double e = s.material.restitution;
-    for (const BodyDesc& b : s.bodies)
-      if (b.material) e = std::max(e, b.material->restitution);
-    if (e > 0.0) {
-      root.at("solver").at("damping").fail(
-          "sets every contact's damping, so the materials' restitution (up to " + json_input::format_number(e) +
-          ") would be ignored: the penalty method derives each pair's damping from its restitution when "
-          "\"damping\" is left out; remove one of them");
-    }
-  }
-  const PenaltyParameters p = derive_penalty_parameters(s);
-  if (const std::string problem = penalty_parameters_problem(s, p); !problem.empty()) {
-    root.at("time").at("dt").fail(problem);
-  }
+  return at_tokens(root, tokens, 0);
 }
 
 Scene read_scene(const JsonNode& root, const LoadLimits& caps) {
@@ -502,8 +476,9 @@ Scene read_scene(const JsonNode& root, const LoadLimits& caps) {
   if (const auto c = root.find("collision")) read_collision(*c, s);
   s.time = read_time(root.at("time"));
   s.allow_initial_overlap = root.boolean_or("allow_initial_overlap", false);
-  if (s.solver.method == ContactSolver::Impulse) refuse_static_friction(root);
-  if (s.solver.method == ContactSolver::Penalty) check_penalty_settings(root, s);
+  if (const ContactMethodRow& method = contact_method(s.solver.method); method.check_scene) {
+    if (const auto problem = method.check_scene(root.json(), s)) at_pointer(root, problem->pointer).fail(problem->message);
+  }
   if (const auto c = root.find("checks")) s.checks = read_checks(*c, s.bodies);
   if (const auto t = root.find("truth")) s.truth = read_truth(*t, s.bodies, s.time);
   return s;

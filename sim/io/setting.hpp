@@ -95,7 +95,9 @@ Setting<typename setting_detail::MemberOf<decltype(Member)>::Owner> member_setti
 template <class S>
 class SettingsTable {
  public:
-  explicit SettingsTable(std::initializer_list<Setting<S>> rows, const S& defaults = S{}) : rows_(rows) {
+  explicit SettingsTable(std::initializer_list<Setting<S>> rows, const S& defaults = S{})
+      : SettingsTable(std::vector<Setting<S>>(rows), defaults) {}
+  explicit SettingsTable(std::vector<Setting<S>> rows, const S& defaults = S{}) : rows_(std::move(rows)) {
     for (Setting<S>& row : rows_) row.info.default_value = row.read(defaults);
   }
 

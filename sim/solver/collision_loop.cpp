@@ -79,8 +79,8 @@ void collision_loop(ImpulseStep& step) {
   const double time = step.world.time;
   const double dt = step.world.dt;
   const double event_speed = collision_event_speed(scene, dt);
-  ImpulseCounters& counters = step.world.counters.impulses;
-  StepStats& stats = step.world.stats;
+  ImpulseCounters& counters = step.counters();
+  ImpulseStepStats& stats = step.stats();
   std::vector<CollisionEvent>& events = step.world.events;
   assert(passes <= kMaxSolverPasses);
   const bool together = scene.solver.pair_impulses;

@@ -5,6 +5,8 @@
 #include "boxpile/sim/solver/collision_loop.hpp"
 #include "boxpile/sim/solver/contact_loop.hpp"
 #include "boxpile/sim/solver/integrate.hpp"
+#include "boxpile/sim/io/own_settings.hpp"
+#include "boxpile/sim/limits.hpp"
 
 namespace boxpile {
 
@@ -26,7 +28,8 @@ PairTerms pair_terms(const SolverSettings& s, int body_a, int body_b, const Rigi
 
 }  // namespace
 
-ImpulseMethod::ImpulseMethod(std::size_t body_count) {
+ImpulseMethod::ImpulseMethod(const Scene& scene, std::size_t body_count)
+    : speculative_(scene.solver.speculative_contacts), reuse_(scene.collision.reuse_contacts) {
   start_v_.resize(body_count);
   start_omega_.resize(body_count);
   const StepStorage storage{body_count};
@@ -47,15 +50,15 @@ void ImpulseMethod::step(StepContext& ctx) {
 
   // 1. The contact set (found by the world), as the solver sees it through the whole step.
   prepare_solver_contacts(ctx);
-  if (same_set_) ++ctx.counters.same_contact_sets;
+  if (same_set_) ++counters_.same_contact_sets;
   StepProfile& profile = ctx.counters.profile;
   profile.lap(Stage::prepare);
-  ImpulseStep step{ctx, SolverBodies{bodies, ctx.ground}, resting_bodies_, solver_contacts_};
-  ctx.stats = StepStats{};
+  stats_ = ImpulseStepStats{};
+  ImpulseStep step{ctx, SolverBodies{bodies, ctx.ground}, resting_bodies_, solver_contacts_, counters_.impulses, stats_};
 
   // 2. Collision loop: resolve approaching contacts with the scene's restitution.
   collision_loop(step);
-  ++ctx.counters.collision_loop_runs;
+  ++counters_.collision_loop_runs;
   profile.lap(Stage::collision_loop);
 
   // 3. External forces on the momenta: gravity, air damping; the wires take their share.
@@ -65,14 +68,14 @@ void ImpulseMethod::step(StepContext& ctx) {
 
   // 4. Contact loop: every contact of the set, restitution ramped up to 0.
   contact_loop(step);
-  ++ctx.counters.contact_loop_runs;
+  ++counters_.contact_loop_runs;
   enforce_wires(bodies, ctx.wires);
   profile.lap(Stage::contact_loop);
 
   // 5. Shock propagation: from the ground up, each level frozen once solved.
   if (s.shock_propagation) {
     shock_.run(step, same_set_);
-    ++ctx.counters.shock_propagation_runs;
+    ++counters_.shock_propagation_runs;
   }
   enforce_wires(bodies, ctx.wires);
   profile.lap(Stage::shock_propagation);
@@ -80,7 +83,7 @@ void ImpulseMethod::step(StepContext& ctx) {
   // Penetration recovery: pseudo-velocities that push overlaps apart (positions only).
   if (s.penetration_recovery > 0.0) {
     recovery_.run(step, s.shock_propagation ? &shock_ : nullptr);
-    ++ctx.counters.recovery_runs;
+    ++counters_.recovery_runs;
   }
   profile.lap(Stage::recovery);
 
@@ -157,6 +160,124 @@ void ImpulseMethod::integrate_positions(StepContext& ctx) {
     }
     advance_pose(b, v, w, ctx.dt, ctx.scene.effects.gyroscopic, ctx.counters);
   }
+}
+
+
+ContactMethodRow impulse_method_row() {
+  using S = Scene;
+  using nlohmann::json;
+  using Kind = SettingInfo::Kind;
+  ContactMethodRow row;
+  row.name = "impulse";
+  row.what = "the Guendelman-Bridson-Fedkiw impulse method (docs/solver.md)";
+  row.variants = {
+      {"boxpile", "ours, every addition on", [](Scene& s) { set_impulse_additions(s.solver, s.collision, true); }},
+      {"lab",
+       "the lab text's, every addition off: pair_impulses, accumulated_impulses, speculative_contacts, "
+       "sticking_solves, shock_propagation, reuse_contacts off, penetration_recovery 0, integrator explicit_euler",
+       [](Scene& s) { set_impulse_additions(s.solver, s.collision, false); }},
+  };
+  row.settings = {
+      scene_flag<&Scene::solver, &SolverSettings::pair_impulses>({.key = "pair_impulses", .kind = Kind::Boolean,
+        .what = "collision loop: the approaching points of a pair get their normal impulses from one system "
+                "(a flat landing stays flat); off: push-only Newton-Coulomb impulses point by point (the lab text)",
+        .scene_key = "solver.pair_impulses"}),
+      scene_flag<&Scene::solver, &SolverSettings::accumulated_impulses>({.key = "accumulated_impulses", .kind = Kind::Boolean,
+        .what = "contact loop and shock propagation: each contact's impulse accumulated over the phase and "
+                "projected on the friction cone (may take back what it gave); off: push-only impulses with "
+                "the ramped restitution on the present u_n (the lab text)",
+        .scene_key = "solver.accumulated_impulses"}),
+      scene_flag<&Scene::solver, &SolverSettings::speculative_contacts>({.key = "speculative_contacts", .kind = Kind::Boolean,
+        .what = "points up to contact_margin (or collision_margin) plus a step's motion apart are contacts that "
+                "may close their gap in the step; off: touching or overlapping points only, both margins "
+                "unused (the lab text)",
+        .scene_key = "solver.speculative_contacts"}),
+      scene_flag<&Scene::solver, &SolverSettings::sticking_solves>({.key = "sticking_solves", .kind = Kind::Boolean,
+        .what = "shock propagation: a group of a level whose touching points can all stick is solved "
+                "directly (least squares); off: every group by passes",
+        .scene_key = "solver.sticking_solves"}),
+      {{.key = "collision_passes", .kind = Kind::Integer, .what = "passes of the collision loop", .min = 1,
+        .max = kMaxSolverPasses, .scene_key = "solver.collision_passes"},
+       [](S& s, const json& v) { s.solver.collision_passes = v.get<int>(); },
+       [](const S& s) { return json(s.solver.collision_passes); }},
+      {{.key = "contact_passes", .kind = Kind::Integer, .what = "passes of the contact loop (restitution ramped to 0)",
+        .min = 1, .max = kMaxSolverPasses, .scene_key = "solver.contact_passes"},
+       [](S& s, const json& v) { s.solver.contact_passes = v.get<int>(); },
+       [](const S& s) { return json(s.solver.contact_passes); }},
+      scene_flag<&Scene::solver, &SolverSettings::shock_propagation>({.key = "shock_propagation", .kind = Kind::Boolean, .what = "shock propagation after the contact loop",
+        .scene_key = "solver.shock_propagation"}),
+      {{.key = "shock_passes", .kind = Kind::Integer, .what = "most passes over one level in shock propagation",
+        .min = 1, .max = kMaxSolverPasses, .scene_key = "solver.shock_passes"},
+       [](S& s, const json& v) { s.solver.shock_passes = v.get<int>(); },
+       [](const S& s) { return json(s.solver.shock_passes); }},
+      {{.key = "recovery_passes", .kind = Kind::Integer,
+        .what = "most passes of penetration recovery per group of a phase (split impulses)", .min = 1,
+        .max = kMaxSolverPasses, .scene_key = "solver.recovery_passes"},
+       [](S& s, const json& v) { s.solver.recovery_passes = v.get<int>(); },
+       [](const S& s) { return json(s.solver.recovery_passes); }},
+      {{.key = "penetration_recovery", .kind = Kind::Number, .unit = "1/step",
+        .what = "fraction of a penetration pushed out per step (0: off)", .min = 0, .max = 1,
+        .scene_key = "solver.penetration_recovery"},
+       [](S& s, const json& v) { s.solver.penetration_recovery = v.get<double>(); },
+       [](const S& s) { return json(s.solver.penetration_recovery); }},
+      {{.key = "penetration_slop", .kind = Kind::Number, .unit = "m", .what = "overlaps this shallow are left alone",
+        .min = 0, .max = limits::kMaxMargin, .scene_key = "solver.penetration_slop"},
+       [](S& s, const json& v) { s.solver.penetration_slop = v.get<double>(); },
+       [](const S& s) { return json(s.solver.penetration_slop); }},
+      {{.key = "integrator", .kind = Kind::Choice, .what = "position update",
+        .choices = {"explicit_euler", "semi_implicit_euler"}, .scene_key = "solver.integrator"},
+       [](S& s, const json& v) {
+         s.solver.integrator = v.get<std::string>() == "explicit_euler" ? PositionIntegrator::ExplicitEuler
+                                                                        : PositionIntegrator::SemiImplicitEuler;
+       },
+       [](const S& s) {
+         return json(s.solver.integrator == PositionIntegrator::ExplicitEuler ? "explicit_euler" : "semi_implicit_euler");
+       }},
+      // The impulse method's alone: the penalty method tests every pair at every step.
+      scene_flag<&Scene::collision, &CollisionSettings::reuse_contacts>({.key = "reuse_contacts", .kind = Kind::Boolean,
+        .what = "copy a pair's contacts from the last step while neither body moves beyond rounding (1e-12)",
+        .scene_key = "collision.reuse_contacts"}),
+  };
+  row.make = [](const Scene& scene, const std::vector<RigidBody>& bodies) -> std::unique_ptr<ContactMethod> {
+    return std::make_unique<ImpulseMethod>(scene, bodies.size());
+  };
+  // Static friction is read by the penalty method's friction springs alone.
+  row.check_scene = [](const json& root, const Scene&) -> std::optional<SceneProblem> {
+    const std::string problem =
+        "belongs to the penalty method (the impulse method has one coefficient, \"friction\"), but solver.method is "
+        "\"impulse\": remove it or set solver.method to \"penalty\"";
+    if (root.contains("material") && root["material"].is_object() && root["material"].contains("static_friction"))
+      return SceneProblem{"/material/static_friction", problem};
+    if (!root.contains("bodies") || !root["bodies"].is_array()) return std::nullopt;
+    for (std::size_t i = 0; i < root["bodies"].size(); ++i) {
+      const json& b = root["bodies"][i];
+      if (b.is_object() && b.contains("material") && b["material"].is_object() &&
+          b["material"].contains("static_friction"))
+        return SceneProblem{"/bodies/" + std::to_string(i) + "/material/static_friction", problem};
+    }
+    return std::nullopt;
+  };
+  return row;
+}
+
+nlohmann::json ImpulseMethod::diagnostics(std::size_t events) const {
+  const ImpulseStepStats& st = stats_;
+  // Passes used and the residual (largest approaching normal velocity, m/s) after each pass, and
+  // shock propagation's largest velocity change in each pass (m/s), for the convergence plots and
+  // rates.
+  nlohmann::json collision = nlohmann::json::array(), contact = nlohmann::json::array();
+  for (int k = 0; k < st.collision_passes_used; ++k) collision.push_back(st.collision_residual[k]);
+  for (int k = 0; k < st.contact_passes_used; ++k) contact.push_back(st.contact_residual[k]);
+  nlohmann::json shock = nlohmann::json::array();
+  for (int k = 0; k < st.shock_pass_count; ++k) shock.push_back(st.shock_change[k]);
+  return {{"method", "impulse"},
+          {"collision_passes", st.collision_passes_used},
+          {"collision_residuals", collision},
+          {"contact_residuals", contact},
+          {"shock_changes", shock},
+          {"shock_levels", st.shock_levels},
+          {"residual_after_shock", st.residual_after_shock},
+          {"collision_events", events}};
 }
 
 }  // namespace boxpile

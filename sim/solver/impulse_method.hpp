@@ -2,10 +2,12 @@
 // propagation) with speculative contacts and penetration recovery (docs/solver.md).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "boxpile/sim/solver/contact_method.hpp"
 #include "boxpile/sim/solver/impulse.hpp"
+#include "boxpile/sim/solver/impulse_step.hpp"
 #include "boxpile/sim/solver/recovery.hpp"
 #include "boxpile/sim/solver/shock_propagation.hpp"
 #include "boxpile/sim/solver/solver_body.hpp"
@@ -13,16 +15,35 @@
 
 namespace boxpile {
 
+// How often the method's stages ran (besides its impulses' counters).
+struct ImpulseMethodCounters {
+  std::uint64_t same_contact_sets = 0;  // steps whose contact set was the last step's, contact for contact
+  std::uint64_t collision_loop_runs = 0;
+  std::uint64_t contact_loop_runs = 0;
+  std::uint64_t shock_propagation_runs = 0;
+  std::uint64_t recovery_runs = 0;
+  ImpulseCounters impulses;
+};
+
 class ImpulseMethod final : public ContactMethod {
  public:
-  explicit ImpulseMethod(std::size_t body_count);
+  ImpulseMethod(const Scene& scene, std::size_t body_count);
+  bool speculative_margins() const override { return speculative_; }
+  bool reuses_contacts() const override { return reuse_; }
   void step(StepContext& ctx) override;
+  nlohmann::json diagnostics(std::size_t events) const override;
+  const ImpulseMethodCounters& counters() const { return counters_; }
+  const ImpulseStepStats& last_step_stats() const { return stats_; }
 
  private:
   // The stages of the method that are its own; the rest are the world's shared stages.
   void prepare_solver_contacts(const StepContext& ctx);
   void integrate_positions(StepContext& ctx);
 
+  ImpulseMethodCounters counters_;
+  ImpulseStepStats stats_;   // of the last step
+  bool speculative_ = true;  // solver.speculative_contacts
+  bool reuse_ = true;        // collision.reuse_contacts
   std::vector<SolverContact> solver_contacts_;
   // Per solver contact, its collision matrix over both bodies as prepared: shock propagation leaves
   // some contacts with a moving body's share alone, and a contact kept from the last step

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include "boxpile/sim/body.hpp"
@@ -41,6 +42,27 @@ struct SolverBodies {
   }
 };
 
+// What the impulse method did in one step, for the convergence plots and the effect tests.
+struct ImpulseStepStats {
+  int collision_passes_used = 0;  // passes run before every contact separated (or the limit)
+  // Largest approaching normal velocity left after each collision-loop pass, m/s.
+  std::array<double, kMaxSolverPasses> collision_residual{};
+  // The same after each contact-loop pass (with that pass's ramped restitution).
+  std::array<double, kMaxSolverPasses> contact_residual{};
+  int contact_passes_used = 0;
+  int shock_levels = 0;
+  int shock_passes_used = 0;  // summed over the levels (a level's direct solves count as one)
+  // Largest velocity change |K dj| an impulse made in each shock-propagation pass, over the
+  // levels (a level stops once it is below kRestingConverged), m/s; shock_pass_count passes are
+  // recorded. A level's direct solves of sticking groups count as its first pass, with their
+  // largest residual as its change.
+  std::array<double, kMaxSolverPasses> shock_change{};
+  int shock_pass_count = 0;  // the most passes any level used
+  // Levels in which a group (or the level as a whole) stopped because its passes no longer converged.
+  int shock_stalled_levels = 0;
+  double residual_after_shock = 0.0;
+};
+
 // The step context of the impulse loops: the world's step, the bodies as the loops see them
 // (the resting phases through their compact array, gathered and scattered around each phase), and
 // the step's solver contacts, with the settings and records every loop reads.
@@ -49,13 +71,15 @@ struct ImpulseStep {
   SolverBodies sb;
   SolverBodyArray& resting;
   std::vector<SolverContact>& contacts;
+  ImpulseCounters& impulses;  // the method's own records
+  ImpulseStepStats& records;
 
   const SolverSettings& settings() const { return world.scene.solver; }
   bool friction() const { return world.scene.effects.friction; }
   bool restitution() const { return world.scene.effects.restitution; }
   double dt() const { return world.dt; }
-  ImpulseCounters& counters() { return world.counters.impulses; }
-  StepStats& stats() { return world.stats; }
+  ImpulseCounters& counters() { return impulses; }
+  ImpulseStepStats& stats() { return records; }
 };
 
 // A level of shock propagation has converged once no impulse of a pass changes a point's

@@ -1,5 +1,11 @@
 #include "boxpile/sim/solver/penalty_method.hpp"
 
+#include <algorithm>
+#include <charconv>
+#include <stdexcept>
+
+#include "boxpile/sim/io/own_settings.hpp"
+
 #include "boxpile/sim/solver/integrate.hpp"
 #include "boxpile/sim/solver/penalty_force.hpp"
 
@@ -47,13 +53,13 @@ void PenaltyMethod::step(StepContext& ctx) {
   integrate_positions(ctx);
   project_wires(ctx.bodies, ctx.wires);
   profile.lap(Stage::integration);
-  ++ctx.counters.penalty_substeps;
+  ++counters_.substeps;
 }
 
 void PenaltyMethod::apply_contact_forces(StepContext& ctx) {
   const bool friction = ctx.scene.effects.friction;
   const bool restitution = ctx.scene.effects.restitution;
-  PenaltyCounters& counters = ctx.counters.penalty;
+  PenaltyCounters& counters = counters_;
   anchors_.begin_step();
   for (const BodyContact& bc : ctx.contacts) {
     RigidBody& a = ctx.bodies[bc.body_a];
@@ -113,6 +119,92 @@ void PenaltyMethod::integrate_positions(StepContext& ctx) {
     if (b.fixed) continue;
     advance_pose(b, b.v, b.omega, ctx.dt, ctx.scene.effects.gyroscopic, ctx.counters);
   }
+}
+
+nlohmann::json PenaltyMethod::diagnostics(std::size_t) const {
+  // Its substeps and the work of its springs and anchors so far.
+  const PenaltyCounters& p = counters_;
+  return {{"method", "penalty"},
+          {"substeps", p.substeps},
+          {"spring_evaluations", p.spring_evaluations},
+          {"anchors_created", p.anchors_created},
+          {"sliding_points", p.sliding_points}};
+}
+
+namespace {
+nlohmann::json optional_json(const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(); }
+// The shortest decimal that reads back as x (as the loader's messages write numbers).
+std::string shortest_decimal(double x) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, result.ptr);
+}
+}  // namespace
+
+ContactMethodRow penalty_method_row() {
+  using S = Scene;
+  using nlohmann::json;
+  using Kind = SettingInfo::Kind;
+  ContactMethodRow row;
+  row.name = "penalty";
+  row.what = "the lab text's penalty method: damped springs at the contact points (docs/penalty.md)";
+  row.settings = {
+      // The penalty method (docs/penalty.md); each one left out is derived from the scene when the
+      // world is built.
+      {{.key = "stiffness", .kind = Kind::Number, .unit = "N/m", .what = "normal spring per contact point",
+        .min = kSoftestSpring, .max = kStiffestSpring, .scene_key = "solver.stiffness"},
+       [](S& s, const json& v) { s.solver.penalty.stiffness = v.get<double>(); },
+       [](const S& s) { return optional_json(s.solver.penalty.stiffness); }},
+      {{.key = "damping", .kind = Kind::Number, .unit = "N s/m",
+        .what = "normal and tangential damper per contact point", .min = 0, .max = kStiffestSpring,
+        .scene_key = "solver.damping"},
+       [](S& s, const json& v) { s.solver.penalty.damping = v.get<double>(); },
+       [](const S& s) { return optional_json(s.solver.penalty.damping); }},
+      {{.key = "friction_stiffness", .kind = Kind::Number, .unit = "N/m", .what = "friction spring per contact point",
+        .min = kSoftestSpring, .max = kStiffestSpring, .scene_key = "solver.friction_stiffness"},
+       [](S& s, const json& v) { s.solver.penalty.friction_stiffness = v.get<double>(); },
+       [](const S& s) { return optional_json(s.solver.penalty.friction_stiffness); }},
+      {{.key = "substeps", .kind = Kind::Integer, .what = "penalty steps per scene step", .min = 1,
+        .max = kMaxPenaltySubsteps, .scene_key = "solver.substeps"},
+       [](S& s, const json& v) { s.solver.penalty.substeps = v.get<int>(); },
+       [](const S& s) { return optional_json(s.solver.penalty.substeps); }},
+  };
+  row.make = [](const Scene& scene, const std::vector<RigidBody>& bodies) -> std::unique_ptr<ContactMethod> {
+    const PenaltyParameters p = derive_penalty_parameters(scene);
+    if (const std::string problem = penalty_parameters_problem(scene, p); !problem.empty())
+      throw std::invalid_argument(scene.source + ": solver: " + problem);
+    return std::make_unique<PenaltyMethod>(p, bodies.size());
+  };
+  row.work_per_step = [](const Scene& s) -> long { return derive_penalty_parameters(s).substeps; };
+  row.time_step_problem = [](const Scene& s) { return penalty_parameters_problem(s, derive_penalty_parameters(s)); };
+  // A damping set for every pair would leave the materials' restitution unread; a scene whose dt
+  // breaks the stability bound, with substeps left to derive, is refused naming the bound; and
+  // collision.reuse_contacts is the impulse method's (the penalty method tests every pair).
+  row.check_scene = [](const json& root, const Scene& s) -> std::optional<SceneProblem> {
+    if (root.contains("collision") && root["collision"].is_object() && root["collision"].contains("reuse_contacts")) {
+      return SceneProblem{
+          "/collision/reuse_contacts",
+          "belongs to the impulse method, but solver.method is \"penalty\": the penalty method tests every pair "
+          "at every step (its springs read each contact's depth); remove it or set solver.method to \"impulse\""};
+    }
+    if (s.solver.penalty.damping && s.effects.restitution) {
+      double e = s.material.restitution;
+      for (const BodyDesc& b : s.bodies)
+        if (b.material) e = std::max(e, b.material->restitution);
+      if (e > 0.0) {
+        return SceneProblem{"/solver/damping",
+                            "sets every contact's damping, so the materials' restitution (up to " +
+                                shortest_decimal(e) +
+                                ") would be ignored: the penalty method derives each pair's damping from its "
+                                "restitution when \"damping\" is left out; remove one of them"};
+      }
+    }
+    const PenaltyParameters p = derive_penalty_parameters(s);
+    if (const std::string problem = penalty_parameters_problem(s, p); !problem.empty())
+      return SceneProblem{"/time/dt", problem};
+    return std::nullopt;
+  };
+  return row;
 }
 
 }  // namespace boxpile

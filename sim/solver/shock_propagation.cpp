@@ -248,7 +248,7 @@ void ShockPropagation::solve_groups(ImpulseStep& step) {
   // split: when every group has converged, or when the largest change of a pass stalls. (Letting a
   // stalled group leave on its own took some 10% more off pyramid_10, but let a tumbling pile's
   // slowly converging groups run on, and the brick wall's penetration went from 0.57 to 4.6 mm.)
-  StepStats& stats = step.stats();
+  ImpulseStepStats& stats = step.stats();
   const int passes = step.settings().shock_passes;
   const PassContext context(step);
   const double direct_residual = solve_sticking_groups(step);

@@ -20,53 +20,18 @@ namespace boxpile {
 // The largest number of passes a loop may be given (keeps per-pass statistics fixed-size).
 inline constexpr int kMaxSolverPasses = 64;
 
-// What the penalty method did: the tests check that its anchors follow the contacts.
-struct PenaltyCounters {
-  std::uint64_t spring_evaluations = 0;  // contact points that carried a spring force
-  std::uint64_t anchors_created = 0;     // contacts that began (a new friction anchor)
-  std::uint64_t sliding_points = 0;      // points whose anchor was dragged (sliding friction)
-};
-
-// How often each stage ran and how much work it did: a scene without an effect never pays for it.
+// How often each stage the methods share ran and how much work it did: a scene without an effect
+// never pays for it. What a method alone does it counts itself (ContactMethod::diagnostics).
 struct WorldCounters {
   std::uint64_t steps = 0;
   std::uint64_t broadphase_pairs = 0;     // pairs the broadphase passed on
   std::uint64_t narrowphase_calls = 0;    // box-box and box-plane tests run
   std::uint64_t pairs_found = 0;          // body pairs (and body-ground pairs) whose contacts were found
   std::uint64_t pairs_reused = 0;         // those copied from the last step instead (ContactReuse)
-  std::uint64_t same_contact_sets = 0;    // impulse steps whose contact set was the last step's, contact for contact
-  std::uint64_t collision_loop_runs = 0;
-  std::uint64_t contact_loop_runs = 0;
-  std::uint64_t shock_propagation_runs = 0;
-  std::uint64_t recovery_runs = 0;
-  std::uint64_t penalty_substeps = 0;
   std::uint64_t gravity_applications = 0;  // per body and step
   std::uint64_t damping_applications = 0;  // per body and step
   std::uint64_t gyroscopic_updates = 0;    // per body and step
-  ImpulseCounters impulses;
-  PenaltyCounters penalty;
   StepProfile profile;  // seconds per stage, when switched on (World::enable_profile)
-};
-
-// What the impulse solver did in one step, for the convergence plots and the effect tests.
-struct StepStats {
-  int collision_passes_used = 0;  // passes run before every contact separated (or the limit)
-  // Largest approaching normal velocity left after each collision-loop pass, m/s.
-  std::array<double, kMaxSolverPasses> collision_residual{};
-  // The same after each contact-loop pass (with that pass's ramped restitution).
-  std::array<double, kMaxSolverPasses> contact_residual{};
-  int contact_passes_used = 0;
-  int shock_levels = 0;
-  int shock_passes_used = 0;  // summed over the levels (a level's direct solves count as one)
-  // Largest velocity change |K dj| an impulse made in each shock-propagation pass, over the
-  // levels (a level stops once it is below kRestingConverged), m/s; shock_pass_count passes are
-  // recorded. A level's direct solves of sticking groups count as its first pass, with their
-  // largest residual as its change.
-  std::array<double, kMaxSolverPasses> shock_change{};
-  int shock_pass_count = 0;  // the most passes any level used
-  // Levels in which a group (or the level as a whole) stopped because its passes no longer converged.
-  int shock_stalled_levels = 0;
-  double residual_after_shock = 0.0;
 };
 
 // A collision event: an impulse at an approach faster than resting contact explains.
@@ -90,7 +55,6 @@ struct StepContext {
   double time = 0.0;  // s, at the step's start
   double dt = 0.0;    // s, this step's length (a penalty substep is a step of its own)
   WorldCounters& counters;
-  StepStats& stats;
   std::vector<CollisionEvent>& events;
 };
 

@@ -4,10 +4,12 @@
 #include <array>
 #include <cstdio>
 #include <iostream>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "boxpile/sim/io/query_loader.hpp"
+#include "boxpile/sim/solver/contact_method.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/json_output.hpp"
 #include "boxpile/validation/contact_diff.hpp"
@@ -17,12 +19,17 @@ namespace boxpile::cli {
 namespace {
 
 constexpr std::string_view kOwn = kOwnDetector;
-// own-impulse and own-penalty name our engine with a forced contact method; the contact set is the
-// same for both, so they are "own" here.
-constexpr std::array<std::string_view, 2> kOwnAliases = {"own-impulse", "own-penalty"};
+// own-NAME names our engine with a forced contact method (one per row of the registry,
+// sim/solver/contact_method.hpp); the contact set is the same for each, so they are "own" here.
+std::vector<std::string> own_aliases() {
+  std::vector<std::string> names;
+  for (const ContactMethodRow& m : contact_methods()) names.push_back("own-" + m.name);
+  return names;
+}
 
 std::string detector_of(const std::string& name) {
-  const bool alias = std::find(kOwnAliases.begin(), kOwnAliases.end(), name) != kOwnAliases.end();
+  const std::vector<std::string> aliases = own_aliases();
+  const bool alias = std::find(aliases.begin(), aliases.end(), name) != aliases.end();
   return alias ? std::string(kOwn) : name;
 }
 constexpr const char* kTable = "table";
@@ -37,7 +44,8 @@ DetectOptions detect_options(const ContactsOptions& options) {
 std::vector<std::string> detector_names() {
   std::vector<std::string> names;
   for (const DetectorInfo& d : detectors()) names.emplace_back(d.name);
-  names.insert(names.begin() + 1, kOwnAliases.begin(), kOwnAliases.end());
+  const std::vector<std::string> aliases = own_aliases();
+  names.insert(names.begin() + 1, aliases.begin(), aliases.end());
   return names;
 }
 

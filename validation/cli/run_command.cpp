@@ -17,6 +17,7 @@
 #include "boxpile/validation/format_number.hpp"
 #include "boxpile/validation/json_output.hpp"
 #include "boxpile/validation/output_safety.hpp"
+#include "boxpile/sim/world.hpp"
 #include "boxpile/validation/recording.hpp"
 #include "boxpile/validation/run_loop.hpp"
 #include "boxpile/validation/state_meter.hpp"
@@ -27,35 +28,6 @@ namespace {
 // Up to this many bodies the human summary lists each one; above it, the extremes only.
 constexpr std::size_t kSummaryBodyLimit = 10;
 
-
-// Our solver's statistics of its last step. Impulse method: passes used and the residual
-// (largest approaching normal velocity, m/s) after each pass, and shock propagation's largest
-// velocity change in each pass (m/s), for the convergence plots and rates. Penalty
-// method: its substeps and the work of its springs and anchors so far.
-nlohmann::json solver_json(std::string_view method, const StepStats& st, const WorldCounters& counters,
-                           std::size_t events) {
-  if (method == "penalty") {
-    const PenaltyCounters& p = counters.penalty;
-    return {{"method", "penalty"},
-            {"substeps", counters.penalty_substeps},
-            {"spring_evaluations", p.spring_evaluations},
-            {"anchors_created", p.anchors_created},
-            {"sliding_points", p.sliding_points}};
-  }
-  nlohmann::json collision = nlohmann::json::array(), contact = nlohmann::json::array();
-  for (int k = 0; k < st.collision_passes_used; ++k) collision.push_back(st.collision_residual[k]);
-  for (int k = 0; k < st.contact_passes_used; ++k) contact.push_back(st.contact_residual[k]);
-  nlohmann::json shock = nlohmann::json::array();
-  for (int k = 0; k < st.shock_pass_count; ++k) shock.push_back(st.shock_change[k]);
-  return {{"method", "impulse"},
-          {"collision_passes", st.collision_passes_used},
-          {"collision_residuals", collision},
-          {"contact_residuals", contact},
-          {"shock_changes", shock},
-          {"shock_levels", st.shock_levels},
-          {"residual_after_shock", st.residual_after_shock},
-          {"collision_events", events}};
-}
 
 // Runs at least this long show their progress on stderr.
 constexpr long kProgressMinSteps = 100'000;
@@ -186,12 +158,9 @@ int run_run(const RunOptions& options) {
   if (record) {
     hooks.frame = [&](const StepView& v) {
       recorder.frame(v);
-      const StepStats* stats = engine->solver_stats();
-      const WorldCounters* counters = engine->solver_counters();
-      if (stats && counters) {
-        const auto* events = engine->collision_events();
-        solver.push_back({{"solver", solver_json(engine->contact_method(), *stats, *counters,
-                                                 events ? events->size() : 0)}});
+      // Our solver's record of its work: its contact method's diagnostics (the method's row).
+      if (const auto* world = dynamic_cast<const World*>(engine.get())) {
+        solver.push_back({{"solver", world->method_diagnostics()}});
       }
     };
   }
