@@ -1,0 +1,166 @@
+#!/usr/bin/env python3
+"""The docs' tables of defaults and ranges against the code that declares them, and the README's
+cost ratios against docs/performance.md's tables. Fails, naming the page and the row, on the first
+disagreements it finds (all of them are listed).
+
+  - the scene loader's bounds (sim/limits.hpp) in docs/reliability.md's table of accepted values and
+    docs/scene-format.md's tables and paragraph of bounds;
+  - `boxpile scene --help`'s defaults in docs/scene-format.md's table of kinds;
+  - the README's ratios of our step to Bullet's in docs/performance.md's "steps" and "moving" tables.
+
+(`boxpile settings`' tables are checked by tests/test_registry.cpp.)
+
+Usage: doc_tables_test.py BOXPILE SOURCE_DIR"""
+import re
+import subprocess
+import sys
+
+boxpile, root = sys.argv[1], sys.argv[2]
+failures = []
+
+
+def read(rel):
+    with open(f"{root}/{rel}", encoding="utf-8") as f:
+        return f.read()
+
+
+def sci(v):
+    """A bound as the docs write it: 1e-6, 5e-4, 1e3."""
+    mantissa, exponent = f"{v:.0e}".split("e")
+    return f"{mantissa}e{int(exponent)}"
+
+
+def row(page, text, key):
+    """The table row of PAGE whose first cell is KEY."""
+    rows = [line for line in text.splitlines() if line.startswith(f"| {key} |")]
+    if not rows:
+        failures.append(f"{page}: no row {key}")
+        return ""
+    return rows[0]
+
+
+def expect(page, where, haystack, needle):
+    if needle not in haystack:
+        failures.append(f"{page}: {where} should say {needle!r} (from the code or the table it cites): {haystack.strip()[:200]!r}")
+
+
+# --- the loader's bounds --------------------------------------------------------------------------
+limits = {m.group(1): float(m.group(2).replace("'", ""))
+          for m in re.finditer(r"inline constexpr \w+(?:::\w+)? (k\w+) = ([-0-9.e']+)", read("sim/limits.hpp"))}
+L = {k: sci(v) for k, v in limits.items()}
+
+page = "docs/reliability.md"
+rel = read(page)
+for key, needle in [
+        ("`mass`", f"{L['kMinMass']} .. {L['kMaxMass']} kg"),
+        ("`half_extents`", f"{L['kMinHalfExtent']} .. {L['kMaxHalfExtent']} m"),
+        ("`half_extents` of a contact query", f"{L['kMinQueryHalfExtent']} .. {L['kMaxHalfExtent']} m"),
+        ("`velocity`", f"norm up to {L['kMaxSpeed']} m/s"),
+        ("`angular_velocity`", f"norm up to {L['kMaxAngularSpeed']} rad/s"),
+        ("coordinates (`position`, `offset`, wire ends, ground `offset`)", f"each component up to {L['kMaxCoordinate']} m"),
+        ("`gravity`", f"each component up to {L['kMaxGravity']} m/s²"),
+        ("`orientation`, ground `normal`", f"each component up to {L['kMaxDirectionComponent']}"),
+        ("`friction`", f"0 .. {L['kMaxFriction']}"),
+        ("`damping` rates", f"0 .. {L['kMaxDampingRate']} 1/s"),
+        ("margins and slops", f"0 .. {L['kMaxMargin']} m"),
+        ("`time.dt`, `--dt`", f"(0, {limits['kMaxTimeStep']:g}] s")]:
+    expect(page, f"row {key}", row(page, rel, key), needle)
+
+page = "docs/scene-format.md"
+fmt = read(page)
+body_rows = fmt.split("| `name` | string | required | | not empty or only white space")[1]
+expect(page, "row `mass`", row(page, body_rows, "`mass`"), f"{L['kMinMass']} to {L['kMaxMass']}")
+for line in [l for l in fmt.splitlines() if l.startswith("| `half_extents` |")]:
+    expect(page, "row `half_extents`", line, f"each {L['kMinHalfExtent']} to {L['kMaxHalfExtent']}")
+expect(page, "row `position`", row(page, body_rows, "`position`"), f"within ±{L['kMaxCoordinate']}")
+expect(page, "row `orientation`", row(page, body_rows, "`orientation`"), f"within ±{L['kMaxDirectionComponent']}")
+expect(page, "row `normal`", row(page, fmt, "`normal`"), f"within ±{L['kMaxDirectionComponent']}")
+expect(page, "row `velocity`", row(page, body_rows, "`velocity`"), f"norm ≤ {L['kMaxSpeed']}")
+expect(page, "row `angular_velocity`", row(page, body_rows, "`angular_velocity`"), f"norm ≤ {L['kMaxAngularSpeed']}")
+expect(page, "row `friction`", row(page, fmt, "`friction`"), f"0 to {L['kMaxFriction']}")
+bounds = re.search(r"measured in \[reliability\.md\]\(reliability\.md\):(.*?)\. A scene", fmt, re.S)
+if not bounds:
+    failures.append(f"{page}: no paragraph of bounds (\"measured in [reliability.md](reliability.md): ...\")")
+else:
+    para = " ".join(bounds.group(1).split())
+    for needle in [f"masses {L['kMinMass']} to {L['kMaxMass']} kg",
+                   f"half extents {L['kMinHalfExtent']} to {L['kMaxHalfExtent']} m",
+                   f"speeds and angular speeds up to {L['kMaxSpeed']} m/s",
+                   f"coordinates within ±{L['kMaxCoordinate']} m",
+                   f"gravity components within ±{L['kMaxGravity']} m/s²",
+                   f"damping rates up to {L['kMaxDampingRate']} 1/s",
+                   f"margins up to {L['kMaxMargin']} m"]:
+        expect(page, "the paragraph of bounds", para, needle)
+if limits["kMaxSpeed"] != limits["kMaxAngularSpeed"]:
+    failures.append(f"{page}: the paragraph of bounds gives one limit for speeds and angular speeds; the code has two")
+
+# --- `boxpile scene`'s defaults --------------------------------------------------------------------
+help_text = subprocess.run([boxpile, "scene", "--help"], check=True, capture_output=True, text=True).stdout
+options = {}  # option -> its description, joined over its lines
+current = None
+for line in help_text.splitlines():
+    m = re.match(r"\s+(--\w+)(.*)", line)
+    if m:  # "  --seed UINT                 heap: the seed ...": the description after 2+ spaces
+        current = m.group(1)
+        parts = re.split(r"\s{2,}", m.group(2).strip(), maxsplit=1)
+        options[current] = parts[1] if len(parts) > 1 else ""
+    elif current and line.startswith(" " * 20):
+        options[current] += " " + line.strip()
+defaults = {}  # (kind, option) -> default as help prints it
+for opt, desc in options.items():
+    for part in desc.split(";"):
+        m = re.match(r"\s*(\w+): .*\(default ([^)]+)\)", part)
+        if m:
+            defaults[(m.group(1), opt)] = m.group(2)
+gap = re.search(r"\((.*)\)", options.get("--gap", ""))
+if gap:
+    for part in gap.group(1).split(";"):
+        kinds, value = part.split(":")
+        for kind in kinds.split(","):
+            defaults[(kind.strip(), "--gap")] = value.strip().replace("--size", "size")
+page = "docs/scene-format.md"
+kinds_help = re.findall(r"^\s{30,}(\w+): ", help_text.split("Options:")[0], re.M)
+for kind in kinds_help:
+    line = row(page, fmt, f"`{kind}`")
+    cell = line.split("|")[2] if line else ""
+    documented = {}
+    for m in re.finditer(r"`(--\w+)(?: ([^`]+))?`(?: ([^,|]+))?", cell):
+        documented[m.group(1)] = (m.group(2) or m.group(3) or "").strip()
+    wanted = {opt: v for (k, opt), v in defaults.items() if k == kind}
+    if documented != wanted:
+        failures.append(f"{page}: the row of `{kind}` gives defaults {documented}; `boxpile scene --help` {wanted}")
+
+# --- the README's cost ratios ------------------------------------------------------------------------
+perf = read("docs/performance.md")
+
+
+def table(name):
+    block = re.search(r"<!-- perf-report: %s -->\n(.*?)<!-- end %s -->" % (name, name), perf, re.S).group(1)
+    rows = {}
+    for line in block.splitlines():
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if len(cells) == 6 and cells[5].strip("*") and cells[0] not in ("scene",) and not cells[0].startswith("---"):
+            rows[cells[0]] = cells[5].strip("*")
+    return rows
+
+
+steps, moving = table("steps"), table("moving")
+resting = [float(v) for k, v in steps.items() if k.startswith(("`stack_10`", "`pyramid", "Jenga"))]
+rammed = [v for k, v in moving.items() if "rammed" in k]
+others = [float(v) for k, v in moving.items() if not k.startswith("`pile_100`") and "rammed" not in k]
+readme = " ".join(read("README.md").split())
+page = "README.md"
+for needle in [f"the Jenga tower ({min(resting):.2f}-{max(resting):.2f} of Bullet's step)",
+               f"more on the pile of 100 boxes ({steps['`pile_100`']})",
+               f"in motion it costs {next(v for k, v in moving.items() if k.startswith('`pile_100`'))} of Bullet's step on the pile of 100 boxes",
+               f"{rammed[0] if rammed else '?'} on the rammed cube",
+               f"{min(others):.2f}-{max(others):.2f} on the bone scene and the falling heaps"]:
+    expect(page, "the paragraph \"What it costs against ODE and Bullet\"", readme, needle)
+if max(resting) >= 1 or float(steps["`pile_100`"]) <= 1:
+    failures.append(f"{page}: the README says ours costs less than Bullet at rest on the stacks, pyramids and Jenga"
+                    f" tower and more on the pile; docs/performance.md's table no longer shows that")
+
+for f in failures:
+    print("doc_tables_test: " + f, file=sys.stderr)
+print(f"doc_tables_test: {len(failures)} disagreement(s)")
+sys.exit(1 if failures else 0)
