@@ -6,9 +6,12 @@ disagreements it finds (all of them are listed).
   - the scene loader's bounds (sim/limits.hpp) in docs/reliability.md's table of accepted values and
     docs/scene-format.md's tables and paragraph of bounds;
   - `boxpile scene --help`'s defaults in docs/scene-format.md's table of kinds;
+  - `boxpile settings`' defaults in the tables written by hand: MuJoCo's in docs/reference-engines.md,
+    and the penalty method's derived settings (with sim/solver/penalty_parameters.hpp's constants)
+    in docs/penalty.md;
   - the README's ratios of our step to Bullet's in docs/performance.md's "steps" and "moving" tables.
 
-(`boxpile settings`' tables are checked by tests/test_registry.cpp.)
+(The pages that copy `boxpile settings`' tables whole are checked by tests/test_registry.cpp.)
 
 Usage: doc_tables_test.py BOXPILE SOURCE_DIR"""
 import re
@@ -129,6 +132,83 @@ for kind in kinds_help:
     wanted = {opt: v for (k, opt), v in defaults.items() if k == kind}
     if documented != wanted:
         failures.append(f"{page}: the row of `{kind}` gives defaults {documented}; `boxpile scene --help` {wanted}")
+
+# --- engines' settings tables written by hand ---------------------------------------------------------
+settings_text = subprocess.run([boxpile, "settings"], check=True, capture_output=True, text=True).stdout
+settings = {}  # engine -> setting -> (default, unit)
+for block in re.split(r"(?m)^(?=### )", settings_text):
+    if not block.startswith("### "):
+        continue
+    engine = block.split("\n", 1)[0][4:].strip()
+    settings[engine] = {}
+    for line in block.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 5 and cells[0].startswith("`"):
+            settings[engine][cells[0].strip("`")] = (cells[2].strip('"'), cells[3])
+
+
+def same_value(doc, code):
+    try:
+        return float(doc) == float(code)
+    except ValueError:
+        return doc.lower() == code.lower()
+
+
+def hand_table(page, text, heading):
+    """The rows (cells) of the first table after HEADING."""
+    start = text.find(heading)
+    if start < 0:
+        failures.append(f"{page}: no section {heading!r}")
+        return []
+    rows = []
+    for line in text[start:].splitlines()[1:]:
+        if line.startswith("|"):
+            rows.append([c.strip() for c in line.strip().strip("|").split("|")])
+        elif rows:
+            break
+    return rows[2:]
+
+
+# docs/reference-engines.md's MuJoCo table: each setting's default (several settings to a row,
+# their defaults comma-separated) is `boxpile settings`' own.
+page = "docs/reference-engines.md"
+ref = read(page)
+listed = set()
+for cells in hand_table(page, ref, "### Settings: `MujocoSettings`"):
+    names = re.findall(r"`(\w+)`", cells[0])
+    values = [v.strip() for v in cells[1].split(",")]
+    if len(names) != len(values):
+        failures.append(f"{page}: MuJoCo's row {cells[0]} gives {len(values)} defaults for {len(names)} settings")
+        continue
+    for name, value in zip(names, values):
+        listed.add(name)
+        code = settings.get("mujoco", {}).get(name)
+        if code is None:
+            failures.append(f"{page}: MuJoCo's table lists `{name}`, which `boxpile settings` has not")
+        elif not same_value(value, code[0]):
+            failures.append(f"{page}: MuJoCo's `{name}` defaults to {value} there, to {code[0]} in `boxpile settings`")
+missing = set(settings.get("mujoco", {})) - listed - {"dt"}
+if missing:
+    failures.append(f"{page}: MuJoCo's table lacks {sorted(missing)} (in `boxpile settings`)")
+
+# docs/penalty.md's table: the settings of the penalty method derived from the scene, their units,
+# and the constants the page derives them with (sim/solver/penalty_parameters.hpp).
+page = "docs/penalty.md"
+pen = read(page)
+rows = {c[0].strip("`"): c for c in hand_table(page, pen, "## Settings and their defaults")}
+derived = {k: v for k, v in settings.get("own-penalty", {}).items() if v[0] == "derived from the scene"}
+if set(rows) != set(derived):
+    failures.append(f"{page}: the table lists {sorted(rows)}; `boxpile settings` derives {sorted(derived)} from the scene")
+for key in set(rows) & set(derived):
+    doc_unit = rows[key][1].replace("·", " ").replace(" per contact point", "").strip() or "—"
+    if doc_unit != derived[key][1]:
+        failures.append(f"{page}: `{key}`'s unit is {rows[key][1]!r} there, {derived[key][1]!r} in `boxpile settings`")
+penalty = {m.group(1): float(m.group(2)) for m in re.finditer(
+    r"inline constexpr \w+ (k\w+) = ([-0-9.e]+)", read("sim/solver/penalty_parameters.hpp"))}
+if "substeps" in rows:
+    expect(page, "row `substeps`", rows["substeps"][2], f"≤ {penalty['kStabilityFraction']:g} ×")
+expect(page, "the paragraph on stiffness", pen, f"d = {penalty['kDefaultRestingOverlap'] * 1e3:g} mm (`kDefaultRestingOverlap`")
+expect(page, "the paragraph on stiffness", pen, f"sinks by\nd = M g / ({penalty['kPointsPerSupport']:g} k)")
 
 # --- the README's cost ratios ------------------------------------------------------------------------
 perf = read("docs/performance.md")
