@@ -6,7 +6,8 @@ disagreements it finds (all of them are listed).
   - the scene loader's bounds (sim/limits.hpp) in docs/reliability.md's table of accepted values and
     docs/scene-format.md's tables and paragraph of bounds;
   - `boxpile scene --help`'s defaults in docs/scene-format.md's table of kinds;
-  - `boxpile settings`' defaults in the tables written by hand: MuJoCo's in docs/reference-engines.md,
+  - `boxpile settings`' defaults in the tables and lists written by hand: MuJoCo's and the
+    WebAssembly engines' (Jolt, Rapier, MuJoCo 3.14) in docs/reference-engines.md,
     and the penalty method's derived settings (with sim/solver/penalty_parameters.hpp's constants)
     in docs/penalty.md;
   - the README's ratios of our step to Bullet's in docs/performance.md's "steps" and "moving" tables.
@@ -190,6 +191,40 @@ for cells in hand_table(page, ref, "### Settings: `MujocoSettings`"):
 missing = set(settings.get("mujoco", {})) - listed - {"dt"}
 if missing:
     failures.append(f"{page}: MuJoCo's table lacks {sorted(missing)} (in `boxpile settings`)")
+
+# docs/reference-engines.md's list of the WebAssembly engines' defaults: "`key` value" pairs (a
+# group of switches "(all on)", "on"/"off" for true/false), single precision read as float32.
+def close(doc, code):
+    words = {"on": "true", "off": "false"}
+    doc = words.get(doc.lower(), doc)
+    try:
+        a, b = float(doc), float(code)
+        return abs(a - b) <= 1e-6 * max(abs(a), abs(b))
+    except ValueError:
+        return doc.lower() == code.lower()
+
+
+section = ref[ref.find("### Settings (hello's defaults"):]
+section = section[:section.find("\n### ", 5)]
+for title, engine in [("Jolt", "jolt"), ("Rapier", "rapier"), ("MuJoCo", "mujoco-wasm")]:
+    item = re.search(r"^- \*\*%s\*\*(.*?)(?=^- \*\*|\Z)" % title, section, re.S | re.M)
+    if not item:
+        failures.append(f"{page}: no item for {title} under \"Settings (hello's defaults ...)\"")
+        continue
+    text = " ".join(item.group(1).split())
+    found = {}
+    for group in re.finditer(r"((?:`\w+`,? )+)\(all on\)", text):
+        for key in re.findall(r"`(\w+)`", group.group(1)):
+            found[key] = "true"
+    for m in re.finditer(r"`(\w+)` ([-0-9.e]+|[A-Za-z]+)", text):
+        found.setdefault(m.group(1), m.group(2).rstrip("."))
+    code = settings.get(engine, {})
+    for key, value in found.items():
+        if key in code and not close(value, code[key][0]):
+            failures.append(f"{page}: {title}'s `{key}` defaults to {value} there, to {code[key][0]} in `boxpile settings`")
+    missing = [k for k in code if k != "dt" and not k.startswith("solimp_") and k not in found]
+    if missing:
+        failures.append(f"{page}: {title}'s list lacks {missing} (in `boxpile settings`)")
 
 # docs/penalty.md's table: the settings of the penalty method derived from the scene, their units,
 # and the constants the page derives them with (sim/solver/penalty_parameters.hpp).
