@@ -4,7 +4,9 @@ cost ratios against docs/performance.md's tables. Fails, naming the page and the
 disagreements it finds (all of them are listed).
 
   - the scene loader's bounds (sim/limits.hpp) in docs/reliability.md's table of accepted values and
-    docs/scene-format.md's tables and paragraph of bounds;
+    docs/scene-format.md's tables and paragraph of bounds (bodies, damping, time);
+  - `boxpile settings`' defaults and ranges of our engine in docs/scene-format.md's `solver` and
+    `collision` tables;
   - `boxpile scene --help`'s defaults in docs/scene-format.md's table of kinds;
   - `boxpile settings`' defaults in the tables and lists written by hand: MuJoCo's and the
     WebAssembly engines' (Jolt, Rapier, MuJoCo 3.14) in docs/reference-engines.md,
@@ -82,6 +84,16 @@ expect(page, "row `normal`", row(page, fmt, "`normal`"), f"within ±{L['kMaxDire
 expect(page, "row `velocity`", row(page, body_rows, "`velocity`"), f"norm ≤ {L['kMaxSpeed']}")
 expect(page, "row `angular_velocity`", row(page, body_rows, "`angular_velocity`"), f"norm ≤ {L['kMaxAngularSpeed']}")
 expect(page, "row `friction`", row(page, fmt, "`friction`"), f"0 to {L['kMaxFriction']}")
+damping_rows = fmt[fmt.find("### `damping`"):]
+for key in ("`linear`", "`angular`"):
+    expect(page, f"`damping`'s row {key}", row(page, damping_rows, key), f"0 to {L['kMaxDampingRate']}")
+time_rows = fmt[fmt.find("### `time`"):]
+expect(page, "`time`'s row `dt`", row(page, time_rows, "`dt`"), f"in (0, {limits['kMaxTimeStep']:g}]")
+expect(page, "`time`'s row `duration`", row(page, time_rows, "`duration`"),
+       f"(10^{len(str(int(limits['kDefaultMaxSteps']))) - 1} by default, `--max-steps`)"
+       if limits["kDefaultMaxSteps"] == 10 ** (len(str(int(limits["kDefaultMaxSteps"]))) - 1) else str(limits["kDefaultMaxSteps"]))
+max_boxes = re.search(r"inline constexpr int kMaxBoxesPerBody = (\d+);", read("sim/body.hpp")).group(1)
+expect(page, "row `boxes`", row(page, body_rows, "`boxes`"), f"1 to {max_boxes} boxes (`kMaxBoxesPerBody`)")
 bounds = re.search(r"measured in \[reliability\.md\]\(reliability\.md\):(.*?)\. A scene", fmt, re.S)
 if not bounds:
     failures.append(f"{page}: no paragraph of bounds (\"measured in [reliability.md](reliability.md): ...\")")
@@ -191,6 +203,46 @@ for cells in hand_table(page, ref, "### Settings: `MujocoSettings`"):
 missing = set(settings.get("mujoco", {})) - listed - {"dt"}
 if missing:
     failures.append(f"{page}: MuJoCo's table lacks {sorted(missing)} (in `boxpile settings`)")
+
+# docs/scene-format.md's `solver` and `collision` tables: the scene keys are our engine's settings
+# (`collision.margin` is `collision_margin`), each with `boxpile settings`' default and range.
+def values_range(values):
+    """ "integer in [1, 64]" -> "[1, 64]"; a number range as the docs write it (1e-06 kept)."""
+    m = re.search(r"in ([\[(][^\])]*[\])])", values)
+    return m.group(1) if m else None
+
+
+page = "docs/scene-format.md"
+own = settings.get("own", {})
+own_values = {}
+for line in settings_text.split("### own\n", 1)[-1].split("\n### ", 1)[0].splitlines():
+    cells = [c.strip() for c in line.strip().strip("|").split("|")]
+    if len(cells) == 5 and cells[0].startswith("`"):
+        own_values[cells[0].strip("`")] = cells[1]
+for heading, rename in [("### `solver`", {}), ("### `collision`", {"margin": "collision_margin"})]:
+    rows = hand_table(page, fmt, heading)
+    if not rows:
+        continue
+    keys = set()
+    for cells in rows:
+        key = rename.get(cells[0].strip("`"), cells[0].strip("`"))
+        if key not in own:
+            if key != "method":
+                failures.append(f"{page}: {heading}'s `{cells[0]}` is no setting of `boxpile settings`' own")
+            continue
+        keys.add(key)
+        default, code_default = cells[2].strip("`").strip('"'), own[key][0]
+        if code_default == "derived from the scene":
+            if default != "derived" and default not in own:  # derived, or another setting's value
+                failures.append(f"{page}: {heading}'s `{key}` defaults to {default}; `boxpile settings`: derived")
+        elif not same_value(default, code_default):
+            failures.append(f"{page}: {heading}'s `{key}` defaults to {default}, `boxpile settings` {code_default}")
+        wanted = values_range(own_values.get(key, ""))
+        if wanted and f"in {wanted}" not in cells[4]:
+            failures.append(f"{page}: {heading}'s `{key}` should say 'in {wanted}' (`boxpile settings`): {cells[4][:80]!r}")
+    missing = {k for k in own if k != "dt" and (heading == "### `collision`") == (k in ("reduce_to_four", "collision_margin", "reuse_contacts"))} - keys
+    if missing:
+        failures.append(f"{page}: {heading} lacks {sorted(missing)} (in `boxpile settings`' own)")
 
 # docs/reference-engines.md's list of the WebAssembly engines' defaults: "`key` value" pairs (a
 # group of switches "(all on)", "on"/"off" for true/false), single precision read as float32.
