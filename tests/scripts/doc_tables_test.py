@@ -3,7 +3,7 @@
 cost ratios against docs/performance.md's tables. Fails, naming the page and the row, on the first
 disagreements it finds (all of them are listed).
 
-  - the scene loader's bounds (sim/limits.hpp) in docs/reliability.md's table of accepted values and
+  - the scene loader's bounds and the caps on work (sim/limits.hpp) in docs/reliability.md's tables and
     docs/scene-format.md's tables and paragraph of bounds (bodies, damping, time);
   - `boxpile settings`' defaults and ranges of our engine in docs/scene-format.md's `solver` and
     `collision` tables;
@@ -53,6 +53,9 @@ def expect(page, where, haystack, needle):
 # --- the loader's bounds --------------------------------------------------------------------------
 limits = {m.group(1): float(m.group(2).replace("'", ""))
           for m in re.finditer(r"inline constexpr \w+(?:::\w+)? (k\w+) = ([-0-9.e']+)", read("sim/limits.hpp"))}
+shifted = re.search(r"kDefaultMaxInputBytes = std::size_t\{1\} << (\d+);", read("sim/limits.hpp"))
+if shifted:
+    limits["kDefaultMaxInputBytes"] = float(1 << int(shifted.group(1)))
 L = {k: sci(v) for k, v in limits.items()}
 
 page = "docs/reliability.md"
@@ -71,6 +74,25 @@ for key, needle in [
         ("margins and slops", f"0 .. {L['kMaxMargin']} m"),
         ("`time.dt`, `--dt`", f"(0, {limits['kMaxTimeStep']:g}] s")]:
     expect(page, f"row {key}", row(page, rel, key), needle)
+
+# docs/reliability.md's caps on work (their defaults and flags' limits in sim/limits.hpp).
+def grouped(n):
+    return f"{int(n):,}"
+
+
+caps = rel[rel.find("## Caps on work"):]
+for key, needle in [
+        ("steps of one run (duration / dt; the penalty method's substeps each count as a step)",
+         f"| {grouped(limits['kDefaultMaxSteps'])} "),
+        ("steps of one run (duration / dt; the penalty method's substeps each count as a step)",
+         f"(up to {sci(limits['kMaxRepresentableSteps'])})"),
+        ("bodies in a scene", f"| {grouped(limits['kDefaultMaxBodies'])} |"),
+        ("pairs of bodies whose bounding boxes overlap: at the start (counted through the broadphase before any engine is"
+         " handed the scene) and in every step of our engine", f"| {grouped(limits['kDefaultMaxPairs'])} |"),
+        ("bytes of an input file (scene, query, grid, recording, sweep report); only regular files are read",
+         f"| {int(limits['kDefaultMaxInputBytes']) >> 30} GiB |" if int(limits['kDefaultMaxInputBytes']) % (1 << 30) == 0
+         else str(int(limits['kDefaultMaxInputBytes'])))]:
+    expect("docs/reliability.md", f"the caps' row {key[:40]}...", row("docs/reliability.md", caps, key), needle)
 
 page = "docs/scene-format.md"
 fmt = read(page)
@@ -107,6 +129,8 @@ else:
                    f"damping rates up to {L['kMaxDampingRate']} 1/s",
                    f"margins up to {L['kMaxMargin']} m"]:
         expect(page, "the paragraph of bounds", para, needle)
+    after = " ".join(fmt[bounds.end():bounds.end() + 200].split())
+    expect(page, "the paragraph of bounds", after, f"at most {grouped(limits['kDefaultMaxBodies'])} bodies unless `--max-bodies`")
 if limits["kMaxSpeed"] != limits["kMaxAngularSpeed"]:
     failures.append(f"{page}: the paragraph of bounds gives one limit for speeds and angular speeds; the code has two")
 
