@@ -12,7 +12,9 @@ disagreements it finds (all of them are listed).
     WebAssembly engines' (Jolt, Rapier, MuJoCo 3.14) in docs/reference-engines.md,
     and the penalty method's derived settings (with sim/solver/penalty_parameters.hpp's constants)
     in docs/penalty.md;
-  - the README's ratios of our step to Bullet's in docs/performance.md's "steps" and "moving" tables.
+  - the ratios of our step to Bullet's quoted in the README and in docs/performance.md's prose (aim 1,
+    the round in motion, the summary of aims) against that page's "steps" and "moving" tables, so
+    that a rerun of scripts/perf-report that changes them fails here until the prose follows.
 
 (The pages that copy `boxpile settings`' tables whole are checked by tests/test_registry.cpp.)
 
@@ -350,6 +352,26 @@ for needle in [f"the Jenga tower ({min(resting):.2f}-{max(resting):.2f} of Bulle
 if max(resting) >= 1 or float(steps["`pile_100`"]) <= 1:
     failures.append(f"{page}: the README says ours costs less than Bullet at rest on the stacks, pyramids and Jenga"
                     f" tower and more on the pile; docs/performance.md's table no longer shows that")
+
+# docs/performance.md's own prose on the same tables.
+page = "docs/performance.md"
+flat = " ".join(perf.split())
+ratio = {k.split(" (")[0]: v for k, v in list(steps.items())}
+moving_ratio = {k.split(" (")[0]: v for k, v in moving.items()}
+for needle in [
+        f"met on `stack_10` ({ratio['`stack_10`']}), the pyramids ({ratio['`pyramid_6`']} and {ratio['`pyramid_10`']}) and"
+        f" the Jenga tower ({ratio['Jenga tower']}), not met on `pile_100` ({ratio['`pile_100`']})",
+        f"ours / Bullet {ratio['`stack_10`']} (`stack_10`), {ratio['`pile_100`']} (`pile_100`), {ratio['`pyramid_6`']}"
+        f" (`pyramid_6`), {ratio['`pyramid_10`']} (`pyramid_10`), {ratio['Jenga tower']} (`jenga`)",
+        f"ours costs {moving_ratio['`pile_100`']} of Bullet's step on `pile_100`, {rammed[0] if rammed else '?'} on the rammed"
+        f" cube, {moving_ratio['the bone scene']} on the bone scene, {moving_ratio['a heap of 300 falling boxes']} on the heap"
+        f" of 300 and {moving_ratio['a heap of 1,000 falling boxes']} on the heap of 1,000"]:
+    expect(page, "the prose on the steps tables", flat, needle)
+dearer = [k for k, v in moving.items() if float(v) > 1.05]
+level = [k for k, v in moving.items() if abs(float(v) - 1) <= 0.05]
+if sorted(dearer) != sorted(k for k in moving if k.startswith("`pile_100`") or "rammed" in k) or len(level) != len(moving) - 2:
+    failures.append(f"{page}: says ours is dearer than Bullet in motion on `pile_100` and the rammed cube and level (within"
+                    f" 5%) elsewhere; the moving table: {moving}")
 
 for f in failures:
     print("doc_tables_test: " + f, file=sys.stderr)
