@@ -31,6 +31,23 @@ string(JSON ideal GET "${report}" engines ode stacks 0 ideal)
 if(NOT ideal EQUAL 5)
   fail("compare: the stack of five's ideal height is ${ideal}, expected 5")
 endif()
+# stack_10 (unit cubes stacked touching): the ideal is the sum of the heights, 10 m, in report.json
+# and in report.md's list of the stacks at the end (docs/tutorial.md, docs/compare.md).
+run_boxpile(0 compare "${FIXTURES}/scenes/stack_10.json" --engines ode --duration 0.1 --report "${WORK}/report_10")
+file(READ "${WORK}/report_10/report.json" report_10)
+string(JSON ideal_10 GET "${report_10}" engines ode stacks 0 ideal)
+string(JSON height_10 GET "${report_10}" engines ode stacks 0 height)
+string(JSON bodies_10 LENGTH "${report_10}" engines ode stacks 0 bodies)
+if(NOT ideal_10 EQUAL 10 OR NOT bodies_10 EQUAL 10)
+  fail("compare stack_10: its stack of ${bodies_10} bodies has ideal ${ideal_10}, expected 10 bodies and 10 m")
+endif()
+# Settled within 1 mm of the ideal (ODE's resting cubes sink some 1e-4 m each into the next).
+if(height_10 LESS 9.999 OR height_10 GREATER 10.001)
+  fail("compare stack_10: ode's stack settles at ${height_10} m, expected within 1 mm of 10")
+endif()
+file(READ "${WORK}/report_10/report.md" md_10)
+expect_contains("${md_10}" "- ode: 10 bodies, ")
+expect_contains("${md_10}" " m (ideal 10.00000, error ")
 # The replay's data: both engines, every recorded frame, the contact counts of report.json.
 file(READ "${WORK}/report/replay.json" replay)
 expect_json("${replay}" ode engines 0 name)

@@ -221,11 +221,68 @@ TEST_CASE("stacks are found through the contact graph from the ground", "[compar
   REQUIRE(reports[0].error);
   CHECK(*reports[0].error == Approx(-1e-4).margin(1e-12));
 
-  // The top cube knocked off: the tower of two is gone, so no ideal for what is left.
+  // The top cube knocked off: the tower of two is gone; what is left are columns of one cube, each
+  // with its own height (1 m) as ideal.
   later[1].x = Vec3(0, 5, 0.5);
   const std::vector<StackReport> knocked = report_stacks(find_stacks(later, s), stacks, later);
   REQUIRE(knocked.size() == 3);
-  CHECK_FALSE(knocked[0].ideal);
+  REQUIRE(knocked[0].ideal);
+  CHECK(*knocked[0].ideal == Approx(1.0).margin(1e-12));
+  CHECK(*knocked[0].error == Approx(0.0).margin(1e-12));
+}
+
+TEST_CASE("A column of boxes that was no stack at the start gets the sum of its boxes' heights as ideal",
+          "[compare]") {
+  // stack_10: ten unit cubes, the top's centre at 9.5 m, its top at 10 m: the column height.
+  const Scene ten = fixture("stack_10");
+  const std::vector<RigidBody> tower = make_bodies(ten);
+  const std::vector<Stack> stacks = find_stacks(tower, ten);
+  REQUIRE(stacks.size() == 1);
+  REQUIRE(stacks[0].column_height);
+  CHECK(*stacks[0].column_height == Approx(10.0).margin(1e-12));
+  CHECK(tower[9].x.z() == Approx(9.5).margin(1e-12));
+
+  // Two boxes dropped onto each other (as docs/tutorial.md's two_drop): at the start the upper one
+  // is in the air, so the stack of two at the end is no start stack; it ends turned a quarter turn
+  // about x, its 0.4 m half extent along z, on the lower cube: ideal 1 + 0.8 m.
+  Scene s = fixture("stack_5");
+  s.bodies.resize(2);
+  s.bodies[1].boxes[0].half_extents = Vec3(0.3, 0.4, 0.3);
+  s.bodies[1].frame.position = Vec3(0.1, 0, 2.0);
+  const std::vector<RigidBody> start = make_bodies(s);
+  const std::vector<Stack> at_start = find_stacks(start, s);
+  REQUIRE(at_start.size() == 1);  // the lower box alone
+  std::vector<RigidBody> end = start;
+  end[1].q = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()));
+  end[1].x = Vec3(0.1, 0, 1.0 + 0.4 - 2e-5);  // its 0.4 half extent now along z, 20 um into the lower
+  const std::vector<StackReport> reports = report_stacks(find_stacks(end, s), at_start, end);
+  REQUIRE(reports.size() == 1);
+  REQUIRE(reports[0].ideal);
+  CHECK(*reports[0].ideal == Approx(1.8).margin(1e-12));
+  CHECK(*reports[0].error == Approx(-2e-5).margin(1e-9));
+
+  // Two boxes apart on the ground are two stacks of one, each its own column.
+  end[1].q = Quat::Identity();
+  end[1].x = Vec3(3, 0, 0.3);
+  const std::vector<StackReport> apart = report_stacks(find_stacks(end, s), at_start, end);
+  REQUIRE(apart.size() == 2);
+  REQUIRE(apart[1].ideal);
+  CHECK(*apart[1].ideal == Approx(0.6).margin(1e-12));
+
+  // A cube across two cubes side by side is no column (two boxes on the ground): no ideal.
+  Scene bridge = fixture("stack_5");
+  bridge.bodies.resize(3);
+  bridge.bodies[1].frame.position = Vec3(1.0, 0, 0.5);
+  bridge.bodies[2].frame.position = Vec3(0.5, 0, 1.5);
+  std::vector<RigidBody> pose = make_bodies(bridge);
+  pose[2].x.z() += 0.5;  // in the air at the start
+  const std::vector<Stack> bridge_start = find_stacks(pose, bridge);
+  pose[2].x.z() -= 0.5;
+  const std::vector<Stack> bridged = find_stacks(pose, bridge);
+  REQUIRE(bridged.size() == 1);
+  CHECK(bridged[0].bodies.size() == 3);
+  CHECK_FALSE(bridged[0].column_height);
+  CHECK_FALSE(report_stacks(bridged, bridge_start, pose)[0].ideal);
 }
 
 TEST_CASE("the perturbed start moves every free body by the perturbation, on its wire for the bone",

@@ -1,6 +1,7 @@
 #include "boxpile/validation/stacks.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 
@@ -25,6 +26,36 @@ int find_root(std::vector<int>& parent, int i) {
     i = p;
   }
   return i;
+}
+
+// The column height of a stack (Stack::column_height), its bodies lowest first: a connected group
+// whose members touch at most two others and whose touching pairs number one fewer than its
+// members is a path; it is a column when that path runs in the order of height from the one body
+// on the ground.
+std::optional<double> column_height(const std::vector<RigidBody>& bodies, const std::vector<int>& members,
+                                    const std::vector<int>& degree, const std::vector<bool>& on_ground,
+                                    const HalfSpace& ground, double tolerance) {
+  int edges = 0;
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    const auto u = static_cast<std::size_t>(members[k]);
+    if (bodies[u].shapes.size() != 1 || degree[u] > 2 || on_ground[u] != (k == 0)) return std::nullopt;
+    edges += degree[u];
+  }
+  if (edges != 2 * (static_cast<int>(members.size()) - 1)) return std::nullopt;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    const RigidBody& body = bodies[static_cast<std::size_t>(members[k])];
+    if (k > 0 && body_pair_depth(bodies[static_cast<std::size_t>(members[k - 1])], body) < -tolerance) {
+      return std::nullopt;
+    }
+    const OrientedBox box = OrientedBox::from(body.shape_pose(0), body.shapes[0].half_extents);
+    int up = 0;
+    for (int a = 1; a < 3; ++a) {
+      if (std::abs(box.axes.col(a).dot(ground.normal)) > std::abs(box.axes.col(up).dot(ground.normal))) up = a;
+    }
+    sum += 2.0 * box.half[up];
+  }
+  return sum;
 }
 
 }  // namespace
@@ -60,12 +91,15 @@ std::vector<Stack> find_stacks(const std::vector<RigidBody>& bodies, const Scene
 
   std::vector<int> parent(bodies.size());
   std::iota(parent.begin(), parent.end(), 0);
+  std::vector<int> degree(bodies.size(), 0);  // touching members
   for (int i = 0; i < n; ++i) {
     if (!member[static_cast<std::size_t>(i)]) continue;
     for (int j = i + 1; j < n; ++j) {
       const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
       if (!member[uj] || !boxes[ui].overlaps(boxes[uj])) continue;
       if (body_pair_depth(bodies[ui], bodies[uj]) < -tolerance) continue;
+      ++degree[ui];
+      ++degree[uj];
       parent[static_cast<std::size_t>(find_root(parent, i))] = find_root(parent, j);
     }
   }
@@ -98,6 +132,7 @@ std::vector<Stack> find_stacks(const std::vector<RigidBody>& bodies, const Scene
       return ground.normal.dot(bodies[static_cast<std::size_t>(a)].x) <
              ground.normal.dot(bodies[static_cast<std::size_t>(b)].x);
     });
+    s.column_height = column_height(bodies, s.bodies, degree, on_ground, ground, tolerance);
     result.push_back(std::move(s));
   }
   return result;
@@ -119,8 +154,9 @@ std::vector<StackReport> report_stacks(const std::vector<Stack>& final_stacks,
     for (const Stack& start : start_stacks) {
       if (sorted(start.bodies) != members) continue;
       r.ideal = start.height;
-      r.error = s.height - start.height;
     }
+    if (!r.ideal) r.ideal = s.column_height;
+    if (r.ideal) r.error = s.height - *r.ideal;
     reports.push_back(std::move(r));
   }
   return reports;

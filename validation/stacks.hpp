@@ -21,6 +21,10 @@ inline constexpr double kTouchTolerance = 1e-3;  // m
 struct Stack {
   std::vector<int> bodies;  // scene indices, lowest first (by centre of mass along the normal)
   double height = 0.0;      // m, of the highest point of any of its boxes above the ground
+  // m, when the stack is a column of single boxes (the lowest on the ground, each of the others on
+  // the one below it and touching no other): the sum of the boxes' heights, each box's edge along
+  // its axis nearest the ground normal (a box lying on a face). Empty for any other stack.
+  std::optional<double> column_height;
 };
 
 // The stacks of a pose: the connected groups of the graph whose nodes are the free bodies and
@@ -34,7 +38,8 @@ std::vector<Stack> find_stacks(const std::vector<RigidBody>& bodies, const Scene
 double top_height(const RigidBody& body, const HalfSpace& ground);
 
 // A stack at the end of a run, and what it should be: `ideal` is its height at the start when the
-// same bodies formed a stack at the start (a scene that started as a stack), else empty.
+// same bodies formed a stack at the start (a scene that started as a stack), else its column
+// height when it is a column of boxes (boxes dropped onto each other), else empty.
 struct StackReport {
   std::vector<std::string> bodies;  // names, lowest first
   double height = 0.0;              // m
