@@ -329,11 +329,17 @@ perf = read("docs/performance.md")
 
 def table(name):
     block = re.search(r"<!-- perf-report: %s -->\n(.*?)<!-- end %s -->" % (name, name), perf, re.S).group(1)
-    rows = {}
+    rows, column = {}, None
     for line in block.splitlines():
-        cells = [c.strip() for c in line.strip("|").split("|")]
-        if len(cells) == 6 and cells[5].strip("*") and cells[0] not in ("scene",) and not cells[0].startswith("---"):
-            rows[cells[0]] = cells[5].strip("*")
+        if not line.startswith("|"):
+            continue
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if cells[0] == "scene":  # the header names the column of ours over Bullet's
+            column = next((i for i, c in enumerate(cells) if c.startswith("ours / Bullet")), None)
+            continue
+        if column is None or cells[0].startswith("---") or len(cells) <= column or not cells[column].strip("*"):
+            continue
+        rows[cells[0]] = cells[column].strip("*")
     return rows
 
 
