@@ -11,7 +11,7 @@ set format y '10^{%L}'
 set key below left Left reverse
 set xrange [0.5:5.5]
 set xtics 1
-set yrange [1e-14:*]
+set yrange [4.06576e-21:*]
 plot 'rates_collision_loop.dat' index 0 using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '#0072B2' title 'ours, t = 1.846 s (largest pass 1): factor 0.526 a pass', \
      'rates_collision_loop.dat' index 1 using 1:2 with lines lw 1 dt 3 lc rgb '#0072B2' notitle, \
      'rates_collision_loop.dat' index 2 using 1:2 with linespoints lw 1.5 pt 4 ps 0.7 lc rgb '#0072B2' title 'ours, t = 2.900 s (median step): factor 0.257 a pass', \
