@@ -1,11 +1,11 @@
 # bounce: error against cost: rerun with `gnuplot error_cost_bounce.gp` in this directory.
-set terminal svg size 900,480 dynamic enhanced font 'Helvetica,13' background '#ffffff'
+set terminal svg size 900,500 dynamic enhanced font 'Helvetica,13' background '#ffffff'
 set output 'error_cost_bounce.svg'
 set title 'bounce: error against cost' noenhanced
 set xlabel 'µs per simulated second' noenhanced
 set ylabel 'error (m)' noenhanced
 set grid lc rgb '#dddddd'
-set key outside right top noenhanced
+set key outside below center horizontal maxcols 4 noenhanced
 set datafile missing 'NaN'
 set logscale x
 set format x '10^{%L}'
