@@ -95,6 +95,14 @@ void add_energy(const CompareResult& r, const FindingLimits& limits, std::vector
   }
   const double gap_limit = std::max(limits.energy_fraction * in_motion, limits.energy_floor * scale);
   if (!(gap_limit > 0.0)) return;
+  // A gap as a share of what set its limit: the energy in motion, or (a scene nearly at rest) the
+  // scene's energy.
+  const bool by_motion = limits.energy_fraction * in_motion >= limits.energy_floor * scale;
+  const auto share = [&](double gap) {
+    return by_motion ? fmt(std::abs(gap) / in_motion) + " of the " + fmt(in_motion) + " J in motion"
+                     : fmt(std::abs(gap) / scale) + " of the scene's " + fmt(scale) + " J (" + fmt(in_motion) +
+                           " J in motion)";
+  };
   const std::optional<double> chaos = chaos_time(r);
   for (std::size_t e = 0; e < r.runs.size(); ++e) {
     const FrameSeries& f = r.runs[e].recording.frames;
@@ -130,14 +138,12 @@ void add_energy(const CompareResult& r, const FindingLimits& limits, std::vector
       while (k + 1 < n && gap[k + 1] * gap[k] > 0.0 && std::abs(gap[k + 1]) >= std::abs(gap[k])) ++k;
       out.push_back({r.runs[e].engine, "energy",
                      "total energy parts from " + whose + " at " + at(f.t[parted]) + ", before chaos" +
-                         (chaos ? " (" + at(*chaos) + ")" : std::string()) + ": " + gap_text(k) + ", " +
-                         fmt(std::abs(gap[k]) / in_motion) + " of the " + fmt(in_motion) + " J in motion; at the end " +
-                         gap_text(n - 1),
+                         (chaos ? " (" + at(*chaos) + ")" : std::string()) + ": " + gap_text(k) + ", " + share(gap[k]) +
+                         "; at the end " + gap_text(n - 1),
                      f.t[parted]});
     } else if (std::abs(gap[n - 1]) > gap_limit) {
       out.push_back({r.runs[e].engine, "energy",
-                     "total energy ends apart from " + whose + ": " + gap_text(n - 1) + ", " +
-                         fmt(std::abs(gap[n - 1]) / in_motion) + " of the " + fmt(in_motion) + " J in motion",
+                     "total energy ends apart from " + whose + ": " + gap_text(n - 1) + ", " + share(gap[n - 1]),
                      f.t[n - 1]});
     }
   }
