@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "boxpile/sim/body.hpp"
 #include "boxpile/validation/compare.hpp"
 
 namespace boxpile {
@@ -21,18 +20,6 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// y at time `time` of a series sampled at increasing times t (linear between samples, the end
-// values outside them).
-double sample(const std::vector<double>& t, const std::vector<double>& y, double time) {
-  const std::size_t n = std::min(t.size(), y.size());
-  if (n == 0) return 0.0;
-  if (time <= t[0]) return y[0];
-  if (time >= t[n - 1]) return y[n - 1];
-  const std::size_t k = static_cast<std::size_t>(std::upper_bound(t.begin(), t.begin() + n, time) - t.begin());
-  const double w = (time - t[k - 1]) / (t[k] - t[k - 1]);
-  return y[k - 1] + w * (y[k] - y[k - 1]);
 }
 
 // What engine `e` is measured against: the median of every engine's value (its own among them)
@@ -112,7 +99,7 @@ void add_energy(const CompareResult& r, const FindingLimits& limits, std::vector
     for (std::size_t k = 0; k < n; ++k) {
       std::vector<double> all;
       for (std::size_t o = 0; o < r.runs.size(); ++o)
-        all.push_back(o == e ? f.energy[k] : sample(r.runs[o].recording.frames.t, r.runs[o].recording.frames.energy, f.t[k]));
+        all.push_back(o == e ? f.energy[k] : value_at_time(r.runs[o].recording.frames.t, r.runs[o].recording.frames.energy, f.t[k]));
       theirs[k] = consensus(all, e);
       gap[k] = f.energy[k] - theirs[k];
     }
@@ -180,12 +167,11 @@ void add_odd_one_out(const CompareResult& r, std::vector<CompareFinding>& out) {
 
 void add_penetration(const CompareResult& r, const FindingLimits& limits, std::vector<CompareFinding>& out) {
   if (r.runs.size() < 2) return;
-  double edge = 0.0;
-  for (const RigidBody& b : make_bodies(r.scene)) edge = edge > 0.0 ? std::min(edge, smallest_edge(b)) : smallest_edge(b);
-  const double floor = limits.penetration_edge_fraction * edge;
+  // The scene's smallest box edge, as the run's checks measured it.
+  const double floor = limits.penetration_edge_fraction * r.runs.front().measures.smallest_edge;
+  std::vector<double> all;
+  for (const EngineRun& run : r.runs) all.push_back(run.deepest.depth);
   for (std::size_t e = 0; e < r.runs.size(); ++e) {
-    std::vector<double> all;
-    for (const EngineRun& run : r.runs) all.push_back(run.deepest.depth);
     const double mine = r.runs[e].deepest.depth, theirs = consensus(all, e);
     if (mine <= floor || mine <= limits.penetration_factor * theirs) continue;
     out.push_back({r.runs[e].engine, "penetration",

@@ -1,5 +1,7 @@
 #include "boxpile/validation/recording.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <unordered_map>
 #include <utility>
 
@@ -157,6 +159,17 @@ class FrameReader {
 };
 
 }  // namespace
+
+double value_at_time(const std::vector<double>& t, const std::vector<double>& y, double time) {
+  const std::size_t n = std::min(t.size(), y.size());
+  if (n == 0) return std::nan("");
+  const auto it = std::lower_bound(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(n), time);
+  if (it == t.begin()) return y.front();
+  if (it == t.begin() + static_cast<std::ptrdiff_t>(n)) return y[n - 1];
+  const auto k = static_cast<std::size_t>(it - t.begin());
+  const double s = (time - t[k - 1]) / (t[k] - t[k - 1]);
+  return y[k - 1] + s * (y[k] - y[k - 1]);
+}
 
 SceneShapes shapes_of(const Scene& scene) {
   SceneShapes shapes;

@@ -50,6 +50,10 @@ struct FrameSeries {
   std::vector<double> stack_height;  // m, the tallest stack (compare fills it; 0 when none)
 };
 
+// y at `time` of a series sampled at increasing times t: linear between samples, the end values
+// outside them, NaN for an empty series. Frames of engines run at different steps meet through it.
+double value_at_time(const std::vector<double>& t, const std::vector<double>& y, double time);
+
 struct Recording {
   std::string scene;
   std::string engine;

@@ -165,16 +165,6 @@ json contacts_json(const CompareResult& r, const ContactFrameCheck& c) {
 }
 
 // Value of a series at time t, linear between recorded frames.
-double at_time(const std::vector<double>& t, const std::vector<double>& y, double time) {
-  if (t.empty() || y.empty()) return std::nan("");
-  const auto it = std::lower_bound(t.begin(), t.end(), time);
-  if (it == t.begin()) return y.front();
-  if (it == t.end()) return y.back();
-  const auto k = static_cast<std::size_t>(it - t.begin());
-  const double s = (time - t[k - 1]) / (t[k] - t[k - 1]);
-  return y[k - 1] + s * (y[k] - y[k - 1]);
-}
-
 std::string dt_text(double dt) {
   const double per_second = 1.0 / dt;
   const double rounded = std::round(per_second);
@@ -398,7 +388,7 @@ std::vector<PlotSpec> report_plots(const CompareResult& r) {
       for (const ImpactEvent& ev : run.events) {
         if (impact_kind(ev) != kind) continue;
         impacts.x.push_back(ev.t);
-        impacts.y.push_back(at_time(run.recording.frames.t, run.recording.frames.energy, ev.t));
+        impacts.y.push_back(value_at_time(run.recording.frames.t, run.recording.frames.energy, ev.t));
       }
       energy.series.push_back(std::move(impacts));
     }
