@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/validation/compare.hpp"
 #include "boxpile/validation/outcomes.hpp"
 #include "boxpile/validation/two_sample.hpp"
 
@@ -202,6 +203,9 @@ TEST_CASE("an engine run twice does not differ from itself; a biased one differs
   const OutcomePair& same = pair_of(r, "own", "own again");
   CHECK_FALSE(same.differ);
   CHECK(same.verdict() == "within chaos");
+  // Start by start: the same engine from the same start gives the same outcome every time.
+  CHECK(same.starts_compared == 8);
+  CHECK(same.starts_agreeing == 8);
   for (const MeasureTest& t : same.tests) {
     INFO(t.measure);
     CHECK(t.ks.statistic == 0.0);
@@ -211,6 +215,25 @@ TEST_CASE("an engine run twice does not differ from itself; a biased one differs
   const OutcomePair& biased = pair_of(r, "own", "soft springs");
   CHECK(biased.differ);
   CHECK(biased.verdict() == "differ beyond their own spread");
+  // The soft springs' 2.5 mm sink is fifty times the spread the starts cause: no start agrees.
+  CHECK(biased.starts_compared == 8);
+  CHECK(biased.starts_agreeing == 0);
+  // compare's verdict: a pair that chaos would explain by its trajectories, but whose outcomes
+  // differ beyond their spread, is "differ", naming the measures; one within chaos stays "chaos".
+  std::vector<PairComparison> pairs(2);
+  pairs[0].difference.a = "own";
+  pairs[0].difference.b = "soft springs";
+  pairs[1].difference.a = "own again";
+  pairs[1].difference.b = "own";
+  for (PairComparison& p : pairs) p.verdict = "chaos";
+  judge_chaos_by_outcomes(r, pairs);
+  CHECK(pairs[0].verdict == "differ");
+  CHECK(pairs[0].beyond_chaos.find("the outcomes over 8 perturbed starts differ beyond their own spread (") == 0);
+  CHECK(pairs[0].beyond_chaos.find("tallest") != std::string::npos);
+  CHECK(pairs[0].starts_agreeing == 0);
+  CHECK(pairs[1].verdict == "chaos");
+  CHECK(pairs[1].starts_agreeing == 8);
+  CHECK(pairs[1].beyond_chaos.empty());
   bool tallest_differs = false;
   for (const MeasureTest& t : biased.tests) {
     if (t.measure == "tallest") tallest_differs = t.differ;

@@ -232,6 +232,11 @@ struct CompareResult {
   std::vector<CompareFinding> findings;
 };
 
+// With outcome statistics (--starts): each pair's start-by-start agreement, and "chaos" turned
+// into "differ" where the outcomes differ beyond the engines' own spread (beyond_chaos says which
+// measures). Pairs and outcome pairs are matched by engine label, in either order.
+void judge_chaos_by_outcomes(const OutcomeStatistics& outcomes, std::vector<PairComparison>& pairs);
+
 // Runs the scene in each engine (then again from the perturbed start), one after the other (ODE's
 // random generator is global), and compares. Throws UnknownEngine for an engine not available.
 CompareResult run_compare(const Scene& scene, const CompareSettings& settings);
