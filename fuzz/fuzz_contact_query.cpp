@@ -13,7 +13,7 @@
 
 #include "boxpile/reference/ode/ode_engine.hpp"
 #include "boxpile/sim/io/query_loader.hpp"
-#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
 
 namespace {
 

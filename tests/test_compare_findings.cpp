@@ -8,8 +8,8 @@
 #include <string>
 
 #include "boxpile/sim/io/scene_loader.hpp"
-#include "boxpile/validation/compare.hpp"
-#include "boxpile/validation/compare_findings.hpp"
+#include "boxpile/validation/compare/compare.hpp"
+#include "boxpile/validation/compare/compare_findings.hpp"
 #include "boxpile/tests/support/work_dir.hpp"
 
 using namespace boxpile;

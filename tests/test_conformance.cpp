@@ -31,11 +31,11 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/tests/support/geometry.hpp"
-#include "boxpile/validation/contact_diff.hpp"
-#include "boxpile/validation/known_biases.hpp"
-#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/contacts/contact_diff.hpp"
+#include "boxpile/validation/conform/known_biases.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
 #include "boxpile/reference/registry.hpp"
-#include "boxpile/validation/judge/judge.hpp"
+#include "boxpile/validation/conform/judge/judge.hpp"
 
 using namespace boxpile;
 using namespace boxpile::test;

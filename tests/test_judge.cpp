@@ -8,10 +8,10 @@
 #include <string>
 
 #include "boxpile/sim/collision/box_box.hpp"
-#include "boxpile/validation/conform_report.hpp"
-#include "boxpile/validation/detectors.hpp"
-#include "boxpile/validation/judge/check_collider.hpp"
-#include "boxpile/validation/judge/judge.hpp"
+#include "boxpile/validation/conform/conform_report.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
+#include "boxpile/validation/conform/judge/check_collider.hpp"
+#include "boxpile/validation/conform/judge/judge.hpp"
 #include "boxpile/tests/support/own_collider.hpp"
 
 using namespace boxpile;

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "boxpile/sim/io/scene_loader.hpp"
-#include "boxpile/validation/outcomes.hpp"
-#include "boxpile/validation/two_sample.hpp"
+#include "boxpile/validation/accuracy/outcomes.hpp"
+#include "boxpile/validation/accuracy/two_sample.hpp"
 
 using namespace boxpile;
 

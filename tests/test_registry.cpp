@@ -22,12 +22,12 @@
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/sim/world.hpp"
 #include "boxpile/tests/support/work_dir.hpp"
-#include "boxpile/validation/compare.hpp"
-#include "boxpile/validation/detectors.hpp"
-#include "boxpile/validation/engine_settings.hpp"
-#include "boxpile/validation/process_engines.hpp"
-#include "boxpile/validation/stability.hpp"
-#include "boxpile/validation/stability_report.hpp"
+#include "boxpile/validation/compare/compare.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
+#include "boxpile/validation/core/engine_settings.hpp"
+#include "boxpile/validation/core/process_engines.hpp"
+#include "boxpile/validation/stability/stability.hpp"
+#include "boxpile/validation/stability/stability_report.hpp"
 
 using namespace boxpile;
 using namespace boxpile::test;

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "boxpile/sim/io/scene_loader.hpp"
-#include "boxpile/validation/rebound_tracker.hpp"
-#include "boxpile/validation/stability_checks.hpp"
+#include "boxpile/validation/rulers/rebound_tracker.hpp"
+#include "boxpile/validation/stability/stability_checks.hpp"
 
 using namespace boxpile;
 

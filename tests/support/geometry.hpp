@@ -16,8 +16,8 @@
 
 #include "boxpile/sim/collision/box.hpp"
 #include "boxpile/sim/collision/contact.hpp"
-#include "boxpile/validation/judge/brute_force.hpp"
-#include "boxpile/validation/judge/pose_sampler.hpp"
+#include "boxpile/validation/conform/judge/brute_force.hpp"
+#include "boxpile/validation/conform/judge/pose_sampler.hpp"
 
 namespace boxpile::test {
 

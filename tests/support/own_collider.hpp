@@ -2,7 +2,7 @@
 // program, shared by the files that judge it.
 #pragma once
 
-#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
 
 namespace boxpile::test {
 

@@ -10,7 +10,7 @@
 
 #include "boxpile/validation/cli/run_limits.hpp"
 #include "boxpile/validation/cli/starts_options.hpp"
-#include "boxpile/validation/scene_generator.hpp"
+#include "boxpile/validation/scene/scene_generator.hpp"
 
 namespace boxpile::cli {
 

@@ -8,7 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "boxpile/validation/cli/run_limits.hpp"
-#include "boxpile/validation/outcomes.hpp"
+#include "boxpile/validation/accuracy/outcomes.hpp"
 
 namespace boxpile::cli {
 
