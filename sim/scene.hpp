@@ -132,7 +132,7 @@ struct BodyDesc {
 };
 
 // What a scene promises to hold in every engine: the checks of the hard-scene catalogue
-// (docs/scene-format.md, "Checks"; measured by validation/stability_checks.hpp). Bodies are
+// (docs/scene-format.md, "Checks"; measured by validation/stability/stability_checks.hpp). Bodies are
 // named in the file and resolved to scene indices by the loader.
 struct RestCheck {
   double kinetic_per_body = 1e-6;  // J: each body's kinetic energy at the end stays below this

@@ -1,5 +1,5 @@
 // What `boxpile conform` makes of a collider's failures beyond counting them
-// (validation/judge/contact_kind.hpp, systematic.hpp, the float32 tolerances, --keep, and the
+// (validation/conform/judge/contact_kind.hpp, systematic.hpp, the float32 tolerances, --keep, and the
 // references' known biases): colliders wrong on purpose in one way each, named for that way.
 #include <catch2/catch.hpp>
 

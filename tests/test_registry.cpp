@@ -1,4 +1,4 @@
-// The engine registry (reference/registry.hpp) and `--set` (validation/engine_settings.hpp), tag
+// The engine registry (reference/registry.hpp) and `--set` (validation/core/engine_settings.hpp), tag
 // [registry]: every list of engines and settings is derived from the rows, a row added at run
 // time joins every list and can be built, `--set ENGINE.KEY=VALUE` reaches compare and stability
 // with and without its prefix, bad words are exit 2 with nothing written, and report.json and

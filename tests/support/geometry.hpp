@@ -1,6 +1,6 @@
 // Shared helpers for the contact tests: seeds and point checks. Box construction, point-set
 // distances, the random pose pairs and the brute-force quantities (directional penetration, least
-// penetration) are the library's judge (validation/judge/), computed without the code under test.
+// penetration) are the library's judge (validation/conform/judge/), computed without the code under test.
 #pragma once
 
 #include <algorithm>

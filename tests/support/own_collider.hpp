@@ -1,4 +1,4 @@
-// Our detector as a collider (validation/detectors.hpp), for the judge's tests: built once per
+// Our detector as a collider (validation/contacts/detectors.hpp), for the judge's tests: built once per
 // program, shared by the files that judge it.
 #pragma once
 

@@ -3,7 +3,7 @@
 // runs the scene from N starts, each free body's start moved by a stated small distance in a
 // direction drawn per start and body; the outcome measures of each run's end are summarized per
 // engine (mean, spread) and every pair of engines is put to two two-sample tests
-// (validation/two_sample.hpp): they "differ beyond their own spread" or agree "within chaos".
+// (validation/accuracy/two_sample.hpp): they "differ beyond their own spread" or agree "within chaos".
 // `boxpile compare --starts N` and `boxpile accuracy --starts N` report them.
 #pragma once
 

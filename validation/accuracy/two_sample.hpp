@@ -1,5 +1,5 @@
 // Two-sample tests: whether two samples of an outcome (each engine's runs from perturbed starts,
-// validation/outcomes.hpp) come from one distribution. The Kolmogorov-Smirnov test compares the
+// validation/accuracy/outcomes.hpp) come from one distribution. The Kolmogorov-Smirnov test compares the
 // whole distributions (exact p-value by counting lattice paths for small samples, Kolmogorov's
 // limit with Stephens' correction for large ones); Welch's t test compares the means without
 // assuming equal spreads. docs/accuracy.md, "Chaotic scenes", says how the verdicts use them.

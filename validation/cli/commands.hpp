@@ -144,7 +144,7 @@ int run_stability_command(const StabilityOptions& options);
 
 // `boxpile scene KIND [--base N] [--width N] [--height N] [--nx N] [--ny N] [--layers N] [--count N]
 // [--gap M] [--seed S] [--size M] [--mass KG] [--out FILE]`: a scene file of a pyramid, wall,
-// tower, grid, heap or dominoes (validation/scene_generator.hpp), checked by the loader, on stdout
+// tower, grid, heap or dominoes (validation/scene/scene_generator.hpp), checked by the loader, on stdout
 // or into FILE.
 struct SceneOptions {
   std::string kind;

@@ -56,7 +56,7 @@ struct CompareSettings {
   // Frames spread evenly over the run (the last at the end) at which contact sets are checked,
   // besides the frame of the deepest penetration.
   int contact_check_frames = 4;
-  // Outcome statistics over perturbed starts (validation/outcomes.hpp): `outcomes.starts` runs per
+  // Outcome statistics over perturbed starts (validation/accuracy/outcomes.hpp): `outcomes.starts` runs per
   // engine after the compared runs; none when 0.
   OutcomeSettings outcomes;
   // Called at each recorded frame of each run.
@@ -123,7 +123,7 @@ struct EngineRun {
   // or the perturbed baseline. The report marks the engine failed; the command exits 1.
   std::optional<std::string> failure;
   std::uint64_t engine_messages = 0;  // ODE's messages during the run
-  // The scene's checks (validation/stability_checks.hpp), measured at every step.
+  // The scene's checks (validation/stability/stability_checks.hpp), measured at every step.
   RunMeasures measures;
   std::vector<SceneCheckResult> checks;
 };
@@ -180,7 +180,7 @@ struct DetectorCheck {
 };
 
 // One touching pair of boxes (or a box and the ground) at a checked frame, through every
-// detector of the table that applies to box-box and box-plane alike (validation/detectors.hpp):
+// detector of the table that applies to box-box and box-plane alike (validation/contacts/detectors.hpp):
 // ours first, then ODE's and Bullet's.
 struct ContactPairCheck {
   int body_a = 0, shape_a = 0;
@@ -222,7 +222,7 @@ struct CompareResult {
   std::vector<PairComparison> pairs;
   std::vector<ContactFrameCheck> contacts;
   std::optional<OutcomeStatistics> outcomes;  // when settings.outcomes.starts > 0
-  // What the runs show engine by engine (validation/compare_findings.hpp).
+  // What the runs show engine by engine (validation/compare/compare_findings.hpp).
   std::vector<CompareFinding> findings;
 };
 

@@ -2,7 +2,7 @@
 // kind, the systematic errors recognised, the saved failures), DIR/conform.md (the same for
 // people, the worst of each kind) and DIR/failures/NAME.json, each saved failing query with the
 // collider's answer, loadable by `boxpile contacts`. Each failing query is also put to every
-// registered detector (ours, ODE's, Bullet's: validation/detectors.hpp) and judged the same way,
+// registered detector (ours, ODE's, Bullet's: validation/contacts/detectors.hpp) and judged the same way,
 // so the report tells the collider's own mistakes from cases where the references go wrong too;
 // a reference wrong only within its known bias (known_biases.hpp) is counted apart.
 #pragma once

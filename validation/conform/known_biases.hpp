@@ -1,6 +1,6 @@
 // What each registered reference detector is known to get wrong, measured in the conformance
 // suite (tests/test_conformance.cpp, docs/reference-engines.md): one row per bias, naming the
-// detector (validation/detectors.hpp). `boxpile conform` puts every failing query to the
+// detector (validation/contacts/detectors.hpp). `boxpile conform` puts every failing query to the
 // references; a reference "also wrong" only within its own known bias does not vouch that the
 // query is hard, so the report counts it apart.
 #pragma once

@@ -1,6 +1,6 @@
 // Comparing two contact sets of the same query from two detectors, another detector's set against
 // a base set (every tool takes ours as the base, and each other registered detector in turn,
-// validation/detectors.hpp): point counts, the angle between the normals, the difference of the
+// validation/contacts/detectors.hpp): point counts, the angle between the normals, the difference of the
 // deepest depths, and how the point sets sit in the contact plane (Hausdorff distance, and whether
 // the smaller set lies inside the larger set's convex hull).
 #pragma once

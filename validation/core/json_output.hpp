@@ -26,7 +26,7 @@ nlohmann::json query_json(const ContactQuery& q);
 // angular_velocity.
 nlohmann::json bodies_json(const std::vector<BodyState>& states);
 
-// Writes `doc` into an output checked and staged before the run (validation/output_safety.hpp):
+// Writes `doc` into an output checked and staged before the run (validation/core/output_safety.hpp):
 // whole or not at all. Throws OutputError naming the path.
 void write_json_file(const nlohmann::json& doc, OutputFile& out);
 

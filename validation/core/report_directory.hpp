@@ -2,7 +2,7 @@
 // directory beside it, which replaces the report directory in one rename at the end. A failure
 // before that (or an exception, an interruption, an abort) removes the staging directory and
 // leaves any previous report as it was. The checks and the clean-up are those of every output
-// (validation/output_safety.hpp).
+// (validation/core/output_safety.hpp).
 #pragma once
 
 #include <filesystem>

@@ -28,10 +28,10 @@ struct ThreeJs {
 // (found at build time); ThreeJsMissing names the files tried.
 ThreeJs load_three_js();
 
-// The page for `data` (validation/replay_data.hpp).
+// The page for `data` (validation/replay/replay_data.hpp).
 std::string replay_html(const nlohmann::json& data, const ThreeJs& three);
 
-// Writes the page into `out`, checked and staged before the work (validation/output_safety.hpp).
+// Writes the page into `out`, checked and staged before the work (validation/core/output_safety.hpp).
 void write_replay_page(const nlohmann::json& data, const ThreeJs& three, OutputFile& out);
 
 }  // namespace boxpile

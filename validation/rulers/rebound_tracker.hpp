@@ -1,7 +1,7 @@
 // A body's rebound, followed from its height and upward speed after each step: it falls, then
 // rises after its first impact (the highest point of that rise is the rebound), then falls again.
-// One implementation for the rebound check (stability_checks.hpp) and the rebound truth
-// (truth_meter.hpp), so that both read a bounce alike.
+// One implementation for the rebound check (validation/stability/stability_checks.hpp) and the
+// rebound truth (validation/accuracy/truth_meter.hpp), so that both read a bounce alike.
 #pragma once
 
 #include <algorithm>

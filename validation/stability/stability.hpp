@@ -1,6 +1,6 @@
 // `boxpile stability`: every scene of a catalogue (default fixtures/hard/) run in every engine,
-// each run judged by the scene's checks (validation/stability_checks.hpp). The report
-// (stability.json, stability.md, plots of the failing cells) is in validation/stability_report.hpp;
+// each run judged by the scene's checks (validation/stability/stability_checks.hpp). The report
+// (stability.json, stability.md, plots of the failing cells) is in validation/stability/stability_report.hpp;
 // docs/stability.md describes both.
 #pragma once
 

@@ -1,5 +1,5 @@
 // The error measures and checks of one sweep cell: the hard-scene catalogue's own (RunMonitor,
-// validation/stability_checks.hpp), observed at every step of the cell's measured run, so that a
+// validation/stability/stability_checks.hpp), observed at every step of the cell's measured run, so that a
 // sweep, `boxpile stability` and `boxpile compare` judge a run alike.
 #pragma once
 
