@@ -24,9 +24,9 @@
 #include "boxpile/sim/collision/box_box.hpp"
 #include "boxpile/sim/collision/box_plane.hpp"
 #include "boxpile/sim/collision/contact.hpp"
-#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
 // Engines by name, comparing contact sets, and the judge of a collider.
-#include "boxpile/validation/contact_diff.hpp"
+#include "boxpile/validation/contacts/contact_diff.hpp"
 #include "boxpile/reference/registry.hpp"
-#include "boxpile/validation/judge/check_collider.hpp"
-#include "boxpile/validation/judge/judge.hpp"
+#include "boxpile/validation/conform/judge/check_collider.hpp"
+#include "boxpile/validation/conform/judge/judge.hpp"

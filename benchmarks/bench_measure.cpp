@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "boxpile/sim/scene.hpp"
-#include "boxpile/validation/state_meter.hpp"
+#include "boxpile/validation/rulers/state_meter.hpp"
 
 namespace boxpile {
 namespace {

@@ -1,5 +1,5 @@
 // libFuzzer target: the contact query (`boxpile contacts`): the query loader, then every
-// registered detector (validation/detectors.hpp: ours, ODE's, Bullet's and any added later) on
+// registered detector (validation/contacts/detectors.hpp: ours, ODE's, Bullet's and any added later) on
 // what it accepts. What must hold: parse_query throws InputError or returns a query every detector
 // answers without crashing or reaching an ODE error, with finite positions and depths and unit
 // normals.
@@ -13,7 +13,7 @@
 
 #include "boxpile/reference/ode/ode_engine.hpp"
 #include "boxpile/sim/io/query_loader.hpp"
-#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // A contact detector: a function from two boxes (or a box and a plane) to a contact set in our
 // convention. Each engine's registry row lists the detectors it brings (reference/registry.hpp);
 // `boxpile contacts`, `contacts --serve`, `boxpile conform`, compare's contact checks and the
-// conformance suite iterate over them (validation/detectors.hpp).
+// conformance suite iterate over them (validation/contacts/detectors.hpp).
 #pragma once
 
 #include <functional>

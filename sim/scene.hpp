@@ -134,7 +134,7 @@ struct BodyDesc {
 };
 
 // What a scene promises to hold in every engine: the checks of the hard-scene catalogue
-// (docs/scene-format.md, "Checks"; measured by validation/stability_checks.hpp). Bodies are
+// (docs/scene-format.md, "Checks"; measured by validation/stability/stability_checks.hpp). Bodies are
 // named in the file and resolved to scene indices by the loader.
 struct RestCheck {
   // m/s: the fastest point of any body at the end (|v| + |omega| r, r the body's farthest box

@@ -18,7 +18,7 @@ endfunction()
 
 file(MAKE_DIRECTORY ${WORK})
 run_step("install" ${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
-foreach(f include/boxpile/boxpile.hpp include/boxpile/sim/body.hpp include/boxpile/validation/judge/judge.hpp
+foreach(f include/boxpile/boxpile.hpp include/boxpile/sim/body.hpp include/boxpile/validation/conform/judge/judge.hpp
           lib/cmake/boxpile/boxpileConfig.cmake lib/cmake/boxpile/boxpileConfigVersion.cmake bin/boxpile
           share/boxpile/fixtures/scenes/bone_hits_pile.json share/boxpile/fixtures/contacts/touching.json
           share/boxpile/benchmarks/grids/accuracy_cost.json share/boxpile/benchmarks/grids/lab_report.json)

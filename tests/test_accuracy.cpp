@@ -13,11 +13,11 @@
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/io/setting.hpp"
-#include "boxpile/validation/accuracy.hpp"
-#include "boxpile/validation/compare.hpp"
-#include "boxpile/validation/process_engines.hpp"
-#include "boxpile/validation/run_loop.hpp"
-#include "boxpile/validation/truth_meter.hpp"
+#include "boxpile/validation/accuracy/accuracy.hpp"
+#include "boxpile/validation/compare/compare.hpp"
+#include "boxpile/validation/core/process_engines.hpp"
+#include "boxpile/validation/core/run_loop.hpp"
+#include "boxpile/validation/accuracy/truth_meter.hpp"
 
 using namespace boxpile;
 

@@ -13,8 +13,8 @@
 #include <string_view>
 #include <vector>
 
-#include "boxpile/validation/sweep.hpp"
-#include "boxpile/validation/sweep_grid.hpp"
+#include "boxpile/validation/sweep/sweep.hpp"
+#include "boxpile/validation/sweep/sweep_grid.hpp"
 
 using namespace boxpile;
 

@@ -11,7 +11,7 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/reference/registry.hpp"
-#include "boxpile/validation/wire_check.hpp"
+#include "boxpile/validation/rulers/wire_check.hpp"
 
 using namespace boxpile;
 

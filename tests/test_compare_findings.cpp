@@ -1,4 +1,4 @@
-// compare's findings (validation/compare_findings.hpp): each rule on runs built by hand, where the
+// compare's findings (validation/compare/compare_findings.hpp): each rule on runs built by hand, where the
 // answer is known, and on the runs where a reader needed it named: the tutorial's two boxes at
 // dt 0.1 s (Bullet leaves first and goes 1.62 m into the ground) and the bone scene (our impulse
 // method loses more in the first impact than the others).
@@ -8,8 +8,8 @@
 #include <string>
 
 #include "boxpile/sim/io/scene_loader.hpp"
-#include "boxpile/validation/compare.hpp"
-#include "boxpile/validation/compare_findings.hpp"
+#include "boxpile/validation/compare/compare.hpp"
+#include "boxpile/validation/compare/compare_findings.hpp"
 #include "boxpile/tests/support/work_dir.hpp"
 
 using namespace boxpile;

@@ -1,5 +1,5 @@
 // What `boxpile conform` makes of a collider's failures beyond counting them
-// (validation/judge/contact_kind.hpp, systematic.hpp, the float32 tolerances, --keep, and the
+// (validation/conform/judge/contact_kind.hpp, systematic.hpp, the float32 tolerances, --keep, and the
 // references' known biases): colliders wrong on purpose in one way each, named for that way.
 #include <catch2/catch.hpp>
 
@@ -8,12 +8,12 @@
 #include <numbers>
 #include <string>
 
-#include "boxpile/validation/conform_report.hpp"
-#include "boxpile/validation/detectors.hpp"
-#include "boxpile/validation/judge/check_collider.hpp"
-#include "boxpile/validation/judge/contact_kind.hpp"
-#include "boxpile/validation/judge/systematic.hpp"
-#include "boxpile/validation/known_biases.hpp"
+#include "boxpile/validation/conform/conform_report.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
+#include "boxpile/validation/conform/judge/check_collider.hpp"
+#include "boxpile/validation/conform/judge/contact_kind.hpp"
+#include "boxpile/validation/conform/judge/systematic.hpp"
+#include "boxpile/validation/conform/known_biases.hpp"
 #include "boxpile/tests/support/own_collider.hpp"
 
 using namespace boxpile;

@@ -6,7 +6,7 @@
 // kind of disagreement counted and gated by a stated limit rather than required never to happen.
 // Where we and a reference disagree, brute force decides who is right: the exact least
 // penetration over the 15 candidate axes and the exact penetration along each reported normal
-// (validation/judge/, the judge of `boxpile conform` too). Set BOXPILE_DUMP_DIR to write every
+// (validation/conform/judge/, the judge of `boxpile conform` too). Set BOXPILE_DUMP_DIR to write every
 // disagreement as a contact query; the ones worth keeping are committed under fixtures/contacts/
 // with a note, and the fixture test below checks what each engine reports for them.
 #include <catch2/catch.hpp>
@@ -31,11 +31,11 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/tests/support/geometry.hpp"
-#include "boxpile/validation/contact_diff.hpp"
-#include "boxpile/validation/known_biases.hpp"
-#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/contacts/contact_diff.hpp"
+#include "boxpile/validation/conform/known_biases.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
 #include "boxpile/reference/registry.hpp"
-#include "boxpile/validation/judge/judge.hpp"
+#include "boxpile/validation/conform/judge/judge.hpp"
 
 using namespace boxpile;
 using namespace boxpile::test;
@@ -45,7 +45,7 @@ namespace {
 constexpr int kDefaultSamples = 20000;
 
 // --- tolerances -------------------------------------------------------------------------------
-// The judge's (validation/judge/judge.hpp): boxes of 0.1-1 m computed in double precision agree
+// The judge's (validation/conform/judge/judge.hpp): boxes of 0.1-1 m computed in double precision agree
 // to rounding (1e-15 m); these sit far above that and far below any physical difference.
 constexpr double kNormalTolerance = kJudgeNormalTolerance;      // rad
 constexpr double kDepthTolerance = kJudgeDepthTolerance;        // m
@@ -170,7 +170,7 @@ const char* verdict_name(Verdict v) {
 // the measured rates behind them); a kind not listed allows none.
 using MismatchGates = std::map<Mismatch, double>;
 
-// A reference detector of the table (validation/detectors.hpp), what we know of its box-box sets,
+// A reference detector of the table (validation/contacts/detectors.hpp), what we know of its box-box sets,
 // and the mismatches with ours it is allowed.
 struct Reference {
   const char* name;
@@ -285,7 +285,7 @@ std::optional<Mismatch> classify(const Reference& ref, const BoxPair& p, const M
 
   double depth_error = std::abs(*d.depth_difference);
   if (ref.merges_close_points && sat.kind == FeatureKind::EdgeEdge) {
-    const double fudge = bullet_edge_fudge(p.a, p.b, sat.normal);  // validation/known_biases.hpp
+    const double fudge = bullet_edge_fudge(p.a, p.b, sat.normal);  // validation/conform/known_biases.hpp
     depth_error = std::abs(*d.depth_difference - fudge);
     if (depth_error <= kDepthTolerance) ++t.edge_fudge;
   }

@@ -20,7 +20,7 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/tests/support/engine_scenes.hpp"
-#include "boxpile/validation/engine_settings.hpp"
+#include "boxpile/validation/core/engine_settings.hpp"
 
 using namespace boxpile;
 using nlohmann::json;

@@ -22,10 +22,10 @@
 #include "boxpile/sim/limits.hpp"
 #include "boxpile/sim/scene.hpp"
 #include "boxpile/sim/time_steps.hpp"
-#include "boxpile/validation/compare.hpp"
+#include "boxpile/validation/compare/compare.hpp"
 #include "boxpile/reference/registry.hpp"
-#include "boxpile/validation/output_safety.hpp"
-#include "boxpile/validation/report_directory.hpp"
+#include "boxpile/validation/core/output_safety.hpp"
+#include "boxpile/validation/core/report_directory.hpp"
 
 using namespace boxpile;
 using Catch::Matchers::Contains;

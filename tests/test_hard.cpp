@@ -26,7 +26,7 @@
 #include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/time_steps.hpp"
-#include "boxpile/validation/stability.hpp"
+#include "boxpile/validation/stability/stability.hpp"
 #include "boxpile/tests/support/geometry.hpp"
 
 using namespace boxpile;

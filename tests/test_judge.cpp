@@ -1,4 +1,4 @@
-// The judge of a collider (validation/judge/): analytic answers for a known pair, our own detector
+// The judge of a collider (validation/conform/judge/): analytic answers for a known pair, our own detector
 // judged right on every regime, and colliders that are wrong on purpose caught by exactly the
 // kind of failure they commit.
 #include <catch2/catch.hpp>
@@ -8,10 +8,10 @@
 #include <string>
 
 #include "boxpile/sim/collision/box_box.hpp"
-#include "boxpile/validation/conform_report.hpp"
-#include "boxpile/validation/detectors.hpp"
-#include "boxpile/validation/judge/check_collider.hpp"
-#include "boxpile/validation/judge/judge.hpp"
+#include "boxpile/validation/conform/conform_report.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
+#include "boxpile/validation/conform/judge/check_collider.hpp"
+#include "boxpile/validation/conform/judge/judge.hpp"
 #include "boxpile/tests/support/own_collider.hpp"
 
 using namespace boxpile;
@@ -192,7 +192,7 @@ TEST_CASE("colliders wrong on purpose fail by the kind of their fault, on every 
 
 TEST_CASE("conform judges every registered detector on each failing query", "[judge]") {
   // A collider that never answers fails every fixture whose boxes overlap; each of those queries
-  // then goes through the detector table and the judge (validation/conform_report.hpp).
+  // then goes through the detector table and the judge (validation/conform/conform_report.hpp).
   ConformRun run;
   run.options = samples_only(0);
   run.options.cases = load_cases(std::string(BOXPILE_FIXTURES_DIR) + "/contacts");

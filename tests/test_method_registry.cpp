@@ -14,7 +14,7 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/solver/contact_method.hpp"
 #include "boxpile/sim/world.hpp"
-#include "boxpile/validation/engine_settings.hpp"
+#include "boxpile/validation/core/engine_settings.hpp"
 
 namespace boxpile {
 namespace {

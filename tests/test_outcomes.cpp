@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "boxpile/sim/io/scene_loader.hpp"
-#include "boxpile/validation/compare.hpp"
-#include "boxpile/validation/outcomes.hpp"
-#include "boxpile/validation/two_sample.hpp"
+#include "boxpile/validation/accuracy/outcomes.hpp"
+#include "boxpile/validation/accuracy/two_sample.hpp"
+#include "boxpile/validation/compare/compare.hpp"
 
 using namespace boxpile;
 

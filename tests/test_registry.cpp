@@ -1,4 +1,4 @@
-// The engine registry (reference/registry.hpp) and `--set` (validation/engine_settings.hpp), tag
+// The engine registry (reference/registry.hpp) and `--set` (validation/core/engine_settings.hpp), tag
 // [registry]: every list of engines and settings is derived from the rows, a row added at run
 // time joins every list and can be built, `--set ENGINE.KEY=VALUE` reaches compare and stability
 // with and without its prefix, bad words are exit 2 with nothing written, and report.json and
@@ -22,13 +22,13 @@
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/sim/world.hpp"
 #include "boxpile/tests/support/work_dir.hpp"
-#include "boxpile/validation/compare.hpp"
-#include "boxpile/validation/detectors.hpp"
-#include "boxpile/validation/engine_settings.hpp"
-#include "boxpile/validation/process_engines.hpp"
-#include "boxpile/validation/stability.hpp"
-#include "boxpile/validation/stability_report.hpp"
-#include "boxpile/validation/tune_moves.hpp"
+#include "boxpile/validation/compare/compare.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
+#include "boxpile/validation/core/engine_settings.hpp"
+#include "boxpile/validation/core/process_engines.hpp"
+#include "boxpile/validation/stability/stability.hpp"
+#include "boxpile/validation/stability/stability_report.hpp"
+#include "boxpile/validation/stability/tune_moves.hpp"
 
 using namespace boxpile;
 using namespace boxpile::test;

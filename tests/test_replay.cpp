@@ -13,10 +13,10 @@
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/reference/registry.hpp"
-#include "boxpile/validation/recording.hpp"
-#include "boxpile/validation/replay_data.hpp"
-#include "boxpile/validation/replay_page.hpp"
-#include "boxpile/validation/run_loop.hpp"
+#include "boxpile/validation/core/recording.hpp"
+#include "boxpile/validation/replay/replay_data.hpp"
+#include "boxpile/validation/replay/replay_page.hpp"
+#include "boxpile/validation/core/run_loop.hpp"
 
 using namespace boxpile;
 using nlohmann::json;

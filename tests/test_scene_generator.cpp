@@ -5,7 +5,7 @@
 
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
-#include "boxpile/validation/scene_generator.hpp"
+#include "boxpile/validation/scene/scene_generator.hpp"
 
 using namespace boxpile;
 

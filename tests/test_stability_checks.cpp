@@ -1,4 +1,4 @@
-// The shared checks (validation/stability_checks.hpp) on runs whose answer is known: a body at
+// The shared checks (validation/stability/stability_checks.hpp) on runs whose answer is known: a body at
 // rest passes everything; energy that rises, a body that moves, a spin, a bounce of known height
 // and a wall passed through are each caught, with the measured figure.
 #include <catch2/catch.hpp>
@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "boxpile/sim/io/scene_loader.hpp"
-#include "boxpile/validation/rebound_tracker.hpp"
-#include "boxpile/validation/stability_checks.hpp"
+#include "boxpile/validation/rulers/rebound_tracker.hpp"
+#include "boxpile/validation/stability/stability_checks.hpp"
 
 using namespace boxpile;
 

@@ -1,7 +1,7 @@
 // A collider for `boxpile conform` in C++ (docs/conform.md): reads one query per line, answers
 // with one line. It answers with boxpile's own detector: replace `collide` with your own.
 #include <boxpile/boxpile.hpp>
-#include <boxpile/validation/json_output.hpp>
+#include <boxpile/validation/core/json_output.hpp>
 
 #include <iostream>
 #include <string>

@@ -133,7 +133,7 @@ parallel -j 2 "$boxpile" sweep "$work/grid.json" --shard {}/$shards --report "$w
 python3 - "$work" "$shards" <<'CHECK' || fail "a merged sweep differs from the unsharded one"
 import json, sys
 work, shards = sys.argv[1], int(sys.argv[2])
-TIMINGS = {"us_per_step", "us_per_simulated_second"}  # the only timings of a cell (validation/sweep.cpp)
+TIMINGS = {"us_per_step", "us_per_simulated_second"}  # the only timings of a cell (validation/sweep/sweep.cpp)
 def cells(report):
     doc = json.load(open(f"{work}/{report}/sweep.json"))
     return doc, [{k: v for k, v in c.items() if k not in TIMINGS} for c in doc["cells"]]

@@ -1,6 +1,6 @@
 // Shared helpers for the contact tests: seeds and point checks. Box construction, point-set
 // distances, the random pose pairs and the brute-force quantities (directional penetration, least
-// penetration) are the library's judge (validation/judge/), computed without the code under test.
+// penetration) are the library's judge (validation/conform/judge/), computed without the code under test.
 #pragma once
 
 #include <algorithm>
@@ -16,8 +16,8 @@
 
 #include "boxpile/sim/collision/box.hpp"
 #include "boxpile/sim/collision/contact.hpp"
-#include "boxpile/validation/judge/brute_force.hpp"
-#include "boxpile/validation/judge/pose_sampler.hpp"
+#include "boxpile/validation/conform/judge/brute_force.hpp"
+#include "boxpile/validation/conform/judge/pose_sampler.hpp"
 
 namespace boxpile::test {
 

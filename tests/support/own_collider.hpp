@@ -1,8 +1,8 @@
-// Our detector as a collider (validation/detectors.hpp), for the judge's tests: built once per
+// Our detector as a collider (validation/contacts/detectors.hpp), for the judge's tests: built once per
 // program, shared by the files that judge it.
 #pragma once
 
-#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
 
 namespace boxpile::test {
 

@@ -9,14 +9,14 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/io/setting.hpp"
 #include "boxpile/sim/time_steps.hpp"
-#include "boxpile/validation/accuracy.hpp"
+#include "boxpile/validation/accuracy/accuracy.hpp"
 #include "boxpile/validation/cli/activity.hpp"
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/cli/report_command.hpp"
-#include "boxpile/validation/engine_settings.hpp"
-#include "boxpile/validation/output_safety.hpp"
-#include "boxpile/validation/stability.hpp"
+#include "boxpile/validation/core/engine_settings.hpp"
+#include "boxpile/validation/core/output_safety.hpp"
+#include "boxpile/validation/stability/stability.hpp"
 
 namespace boxpile::cli {
 namespace {

@@ -1,7 +1,7 @@
 // What a command is doing, for the one message that cannot be written where the failure happens:
 // an allocation that fails (std::bad_alloc names nothing). Each phase of a command opens an
 // Activity ("loading stack.json", "running ode on stack.json"); main's handler prints the
-// innermost one open, and run_loop adds the step (OutOfMemory, validation/run_loop.hpp).
+// innermost one open, and run_loop adds the step (OutOfMemory, validation/core/run_loop.hpp).
 #pragma once
 
 #include <string>

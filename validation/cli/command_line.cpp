@@ -16,12 +16,12 @@
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/engine_command_options.hpp"
 #include "boxpile/validation/cli/terminal_output.hpp"
-#include "boxpile/validation/collider_process.hpp"
-#include "boxpile/validation/detectors.hpp"
-#include "boxpile/validation/output_safety.hpp"
-#include "boxpile/validation/process_engines.hpp"
-#include "boxpile/validation/report_directory.hpp"
-#include "boxpile/validation/run_loop.hpp"
+#include "boxpile/validation/conform/collider_process.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
+#include "boxpile/validation/core/output_safety.hpp"
+#include "boxpile/validation/core/process_engines.hpp"
+#include "boxpile/validation/core/report_directory.hpp"
+#include "boxpile/validation/core/run_loop.hpp"
 
 namespace {
 

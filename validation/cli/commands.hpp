@@ -10,7 +10,7 @@
 
 #include "boxpile/validation/cli/run_limits.hpp"
 #include "boxpile/validation/cli/starts_options.hpp"
-#include "boxpile/validation/scene_generator.hpp"
+#include "boxpile/validation/scene/scene_generator.hpp"
 
 namespace boxpile::cli {
 
@@ -148,7 +148,7 @@ int run_stability_merge_command(const StabilityOptions& options);
 
 // `boxpile scene KIND [--base N] [--width N] [--height N] [--nx N] [--ny N] [--layers N] [--count N]
 // [--gap M] [--seed S] [--size M] [--mass KG] [--out FILE]`: a scene file of a pyramid, wall,
-// tower, grid, heap or dominoes (validation/scene_generator.hpp), checked by the loader, on stdout
+// tower, grid, heap or dominoes (validation/scene/scene_generator.hpp), checked by the loader, on stdout
 // or into FILE.
 struct SceneOptions {
   std::string kind;

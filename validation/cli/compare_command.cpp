@@ -6,12 +6,12 @@
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/cli/report_command.hpp"
-#include "boxpile/validation/compare.hpp"
-#include "boxpile/validation/engine_settings.hpp"
-#include "boxpile/validation/data_directory.hpp"
-#include "boxpile/validation/output_safety.hpp"
+#include "boxpile/validation/compare/compare.hpp"
+#include "boxpile/validation/core/engine_settings.hpp"
+#include "boxpile/validation/core/data_directory.hpp"
+#include "boxpile/validation/core/output_safety.hpp"
 #include "boxpile/reference/registry.hpp"
-#include "boxpile/validation/report.hpp"
+#include "boxpile/validation/compare/report.hpp"
 
 namespace boxpile::cli {
 

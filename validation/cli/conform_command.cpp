@@ -7,11 +7,11 @@
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/cli/report_command.hpp"
-#include "boxpile/validation/collider_process.hpp"
-#include "boxpile/validation/conform_report.hpp"
-#include "boxpile/validation/data_directory.hpp"
-#include "boxpile/validation/format_number.hpp"
-#include "boxpile/validation/judge/check_collider.hpp"
+#include "boxpile/validation/conform/collider_process.hpp"
+#include "boxpile/validation/conform/conform_report.hpp"
+#include "boxpile/validation/core/data_directory.hpp"
+#include "boxpile/validation/core/format_number.hpp"
+#include "boxpile/validation/conform/judge/check_collider.hpp"
 
 namespace boxpile::cli {
 namespace {

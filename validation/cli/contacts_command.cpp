@@ -11,9 +11,9 @@
 #include "boxpile/sim/io/query_loader.hpp"
 #include "boxpile/sim/solver/contact_method.hpp"
 #include "boxpile/validation/cli/commands.hpp"
-#include "boxpile/validation/json_output.hpp"
-#include "boxpile/validation/contact_diff.hpp"
-#include "boxpile/validation/detectors.hpp"
+#include "boxpile/validation/core/json_output.hpp"
+#include "boxpile/validation/contacts/contact_diff.hpp"
+#include "boxpile/validation/contacts/detectors.hpp"
 
 namespace boxpile::cli {
 namespace {

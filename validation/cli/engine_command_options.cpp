@@ -1,6 +1,6 @@
 #include "boxpile/validation/cli/engine_command_options.hpp"
 
-#include "boxpile/validation/process_engines.hpp"
+#include "boxpile/validation/core/process_engines.hpp"
 
 namespace boxpile::cli {
 

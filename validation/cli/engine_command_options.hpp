@@ -13,7 +13,7 @@ namespace boxpile::cli {
 
 struct EngineCommandOptions {
   std::vector<std::string> commands;  // NAME=COMMAND
-  double timeout_seconds = 30.0;      // validation/process_engines.hpp: kDefaultEngineTimeout
+  double timeout_seconds = 30.0;      // validation/core/process_engines.hpp: kDefaultEngineTimeout
 };
 
 void add_engine_command_options(CLI::App& cmd, EngineCommandOptions& options);

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <utility>
 
-#include "boxpile/validation/output_safety.hpp"
+#include "boxpile/validation/core/output_safety.hpp"
 
 namespace boxpile::cli {
 

@@ -13,7 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include "boxpile/validation/cli/interruptible.hpp"
-#include "boxpile/validation/report_directory.hpp"
+#include "boxpile/validation/core/report_directory.hpp"
 
 namespace boxpile::cli {
 

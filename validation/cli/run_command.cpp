@@ -13,14 +13,14 @@
 #include "boxpile/validation/cli/interruptible.hpp"
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/reference/registry.hpp"
-#include "boxpile/validation/engine_settings.hpp"
-#include "boxpile/validation/format_number.hpp"
-#include "boxpile/validation/json_output.hpp"
-#include "boxpile/validation/output_safety.hpp"
+#include "boxpile/validation/core/engine_settings.hpp"
+#include "boxpile/validation/core/format_number.hpp"
+#include "boxpile/validation/core/json_output.hpp"
+#include "boxpile/validation/core/output_safety.hpp"
 #include "boxpile/sim/world.hpp"
-#include "boxpile/validation/recording.hpp"
-#include "boxpile/validation/run_loop.hpp"
-#include "boxpile/validation/state_meter.hpp"
+#include "boxpile/validation/core/recording.hpp"
+#include "boxpile/validation/core/run_loop.hpp"
+#include "boxpile/validation/rulers/state_meter.hpp"
 
 namespace boxpile::cli {
 namespace {

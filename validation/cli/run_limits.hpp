@@ -47,7 +47,7 @@ std::string engine_choices();
 // "own,ode,bullet": a default engine list as a help text shows it.
 std::string engine_list(const std::vector<std::string>& names);
 
-// `--set [ENGINE.]KEY=VALUE`, repeatable (validation/engine_settings.hpp reads the words).
+// `--set [ENGINE.]KEY=VALUE`, repeatable (validation/core/engine_settings.hpp reads the words).
 void add_set_option(CLI::App& cmd, std::vector<std::string>& words);
 
 // A CLI11 check that a value is a whole number >= 0 written in digits (an unsigned option would

@@ -5,9 +5,9 @@
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/validation/cli/commands.hpp"
-#include "boxpile/validation/json_output.hpp"
-#include "boxpile/validation/output_safety.hpp"
-#include "boxpile/validation/scene_generator.hpp"
+#include "boxpile/validation/core/json_output.hpp"
+#include "boxpile/validation/core/output_safety.hpp"
+#include "boxpile/validation/scene/scene_generator.hpp"
 
 namespace boxpile::cli {
 namespace {

@@ -1,5 +1,5 @@
 // --starts N and --start-perturbation M of `compare` and `accuracy`: outcome statistics over N
-// perturbed starts per engine (validation/outcomes.hpp, docs/accuracy.md "Chaotic scenes").
+// perturbed starts per engine (validation/accuracy/outcomes.hpp, docs/accuracy.md "Chaotic scenes").
 #pragma once
 
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "boxpile/validation/cli/run_limits.hpp"
-#include "boxpile/validation/outcomes.hpp"
+#include "boxpile/validation/accuracy/outcomes.hpp"
 
 namespace boxpile::cli {
 

@@ -13,13 +13,13 @@
 #include "boxpile/validation/cli/commands.hpp"
 #include "boxpile/validation/cli/progress.hpp"
 #include "boxpile/validation/cli/report_command.hpp"
-#include "boxpile/validation/data_directory.hpp"
-#include "boxpile/validation/engine_settings.hpp"
-#include "boxpile/validation/format_number.hpp"
-#include "boxpile/validation/output_safety.hpp"
-#include "boxpile/validation/sweep_report.hpp"
-#include "boxpile/validation/sweep.hpp"
-#include "boxpile/validation/sweep_runner.hpp"
+#include "boxpile/validation/core/data_directory.hpp"
+#include "boxpile/validation/core/engine_settings.hpp"
+#include "boxpile/validation/core/format_number.hpp"
+#include "boxpile/validation/core/output_safety.hpp"
+#include "boxpile/validation/sweep/sweep_report.hpp"
+#include "boxpile/validation/sweep/sweep.hpp"
+#include "boxpile/validation/sweep/sweep_runner.hpp"
 
 namespace boxpile::cli {
 namespace {

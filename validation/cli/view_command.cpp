@@ -5,11 +5,11 @@
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/validation/cli/commands.hpp"
-#include "boxpile/validation/output_safety.hpp"
-#include "boxpile/validation/recording.hpp"
-#include "boxpile/validation/replay_data.hpp"
-#include "boxpile/validation/replay_page.hpp"
-#include "boxpile/validation/report.hpp"
+#include "boxpile/validation/core/output_safety.hpp"
+#include "boxpile/validation/core/recording.hpp"
+#include "boxpile/validation/replay/replay_data.hpp"
+#include "boxpile/validation/replay/replay_page.hpp"
+#include "boxpile/validation/compare/report.hpp"
 
 namespace boxpile::cli {
 namespace {

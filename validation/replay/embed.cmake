@@ -1,5 +1,5 @@
 # Writes OUT, a C++ source holding the replay page's template and viewer script as string
-# constants (validation/replay_page.cpp inlines them with three.js into each page).
+# constants (validation/replay/replay_page.cpp inlines them with three.js into each page).
 # Run with -DPAGE=<page.html> -DVIEWER=<viewer.js> -DOUT=<replay_assets.cpp>.
 file(READ "${PAGE}" page)
 file(READ "${VIEWER}" viewer)

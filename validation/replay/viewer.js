@@ -53,7 +53,7 @@
   var GRAPH_MARGIN = 8;
   // Opacity of bodies when engines are overlaid.
   var OVERLAY_OPACITY = 0.45;
-  // Floats per body state and per contact point (the packing of validation/replay_data.cpp).
+  // Floats per body state and per contact point (the packing of validation/replay/replay_data.cpp).
   var STATE_FLOATS = 13;
   var CONTACT_FLOATS = 7;
   // A normal arrow's length at zero depth, as a fraction of the median body's size.
