@@ -78,6 +78,7 @@ void ImpulseMethod::merge_workers() {
     }
     st.shock_pass_count = std::max(st.shock_pass_count, ws.shock_pass_count);
     st.shock_passes_used += ws.shock_passes_used;
+    st.shock_parts += ws.shock_parts;
     st.shock_stalled_levels += ws.shock_stalled_levels;
     w.counters = ImpulseCounters{};
     w.stats = ImpulseStepStats{};

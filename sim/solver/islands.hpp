@@ -44,7 +44,11 @@ class Islands {
     // The largest first, so that a pool's threads share the rest while one takes it.
     by_size_.resize(static_cast<std::size_t>(count()));
     std::iota(by_size_.begin(), by_size_.end(), 0);
-    std::stable_sort(by_size_.begin(), by_size_.end(), [&](int a, int b) { return end(a) - begin(a) > end(b) - begin(b); });
+    // (std::sort with the island's number deciding ties: std::stable_sort would allocate its buffer.)
+    std::sort(by_size_.begin(), by_size_.end(), [&](int a, int b) {
+      const int size_a = end(a) - begin(a), size_b = end(b) - begin(b);
+      return size_a > size_b || (size_a == size_b && a < b);
+    });
   }
 
   // The search's index of each contact, island by island.

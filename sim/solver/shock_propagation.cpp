@@ -305,6 +305,7 @@ void ShockPropagation::solve_groups(ImpulseStep& step, int group_begin, int grou
   }
   stats.shock_pass_count = std::max(stats.shock_pass_count, pass);
   stats.shock_passes_used += pass;
+  ++stats.shock_parts;
   if (stalled) ++stats.shock_stalled_levels;
 }
 
