@@ -2,10 +2,12 @@
 // in sim/io/scene_loader.hpp and the format is documented in docs/scene-format.md.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "boxpile/sim/body.hpp"
@@ -139,8 +141,11 @@ struct BodyDesc {
 // (docs/scene-format.md, "Checks"; measured by validation/stability_checks.hpp). Bodies are
 // named in the file and resolved to scene indices by the loader.
 struct RestCheck {
-  double kinetic_per_body = 1e-6;  // J: each body's kinetic energy at the end stays below this
-  double max_move = 1e-3;          // m: no body's position ever moves farther than this from its start
+  // m/s: the fastest point of any body at the end (|v| + |omega| r, r the body's farthest box
+  // corner from its centre of mass) stays below this. Judged by speed, not kinetic energy, so
+  // that a 1,000 kg box and a 1 kg one are held to the same motion.
+  double speed = 1e-3;
+  double max_move = 1e-3;  // m: no body's position ever moves farther than this from its start
 };
 struct TurningCheck {
   double limit = 1e-3;           // rad/s: no body turns faster than this
@@ -179,7 +184,21 @@ struct SceneChecks {
   std::vector<SideCheck> stays_behind;
   // The deepest penetration over the run stays below this fraction of the smallest box edge.
   double penetration = 0.01;
+  // Why each limit is what it is, by the check's key in the file ("energy_rise", "rest", ...):
+  // the published test it follows, the physical scale of the scene it is derived from, or the
+  // precision of the numbers. Optional for a user's scene; every scene of the hard catalogue
+  // gives one for each of its checks.
+  std::map<std::string, std::string> reasons;
 };
+
+// The keys of a scene's "checks" object, in the order reports list them ("reasons" aside).
+inline constexpr std::array<std::string_view, 8> kCheckKeys = {
+    "energy_rise", "energy_conserved", "penetration", "rest", "no_turning", "rebound", "slides", "stays_behind"};
+// Whether the scene's checks hold the check of this key (energy_rise and penetration always do,
+// at their defaults when the file does not give them).
+bool has_check(const SceneChecks& checks, std::string_view key);
+// The keys of the checks the scene holds that give no reason (the hard catalogue has none).
+std::vector<std::string_view> checks_without_reason(const SceneChecks& checks);
 
 // What the scene's bodies do, known in closed form (docs/scene-format.md, "Truth"): what
 // `boxpile accuracy` and the tests measure every engine's error against. Bodies are named in the

@@ -117,8 +117,8 @@ TEST_CASE("findings: the odd one out leaves every other engine before any two ot
 
 TEST_CASE("findings: an engine that alone fails a check the others pass", "[compare][findings]") {
   CompareResult r = three_engines();
-  const SceneCheckResult pass{"rest_move", 1e-5, 1e-3, false, true, "m"};
-  const SceneCheckResult fail{"rest_move", 2e-3, 1e-3, false, false, "m"};
+  const SceneCheckResult pass{"rest_move", 1e-5, 1e-3, false, true, "m", "rest", ""};
+  const SceneCheckResult fail{"rest_move", 2e-3, 1e-3, false, false, "m", "rest", ""};
   r.runs[0].checks = {pass};
   r.runs[1].checks = {pass};
   r.runs[2].checks = {fail};

@@ -204,6 +204,20 @@ TEST_CASE("the catalogue has at least 16 scenes, each with a note and checks", "
   }
 }
 
+// Every limit of the catalogue says why it is what it is (scripts/make-hard-scenes derives each
+// from a scale of its scene and writes the reason beside it).
+TEST_CASE("every check of every catalogue scene states its reason", "[hard]") {
+  for (const Scene& s : catalogue()) {
+    INFO(s.source);
+    const std::vector<std::string_view> missing = checks_without_reason(s.checks);
+    CHECK(missing.empty());
+    for (const auto& [key, reason] : s.checks.reasons) {
+      INFO(key);
+      CHECK(reason.size() > 40);
+    }
+  }
+}
+
 // With the per-scene verdicts above, these hold the counts of failing scenes measured on the
 // catalogue: a scene added or removed must update them. Every engine listed is one the registry
 // knows, every scene it passes is in the catalogue, and ODE and Bullet stay listed.

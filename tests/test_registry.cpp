@@ -28,6 +28,7 @@
 #include "boxpile/validation/process_engines.hpp"
 #include "boxpile/validation/stability.hpp"
 #include "boxpile/validation/stability_report.hpp"
+#include "boxpile/validation/tune_moves.hpp"
 
 using namespace boxpile;
 using namespace boxpile::test;
@@ -556,8 +557,9 @@ TEST_CASE("diff_runs pairs frames by time when the runs' steps differ", "[regist
 }
 
 // `stability --tune` on a cell that fails as run: ODE's QuickStep lets the flat drop turn
-// (no_turning 0.07 rad/s at 1/240 s and 20 iterations); the ladder finds a passing rung, records
-// it, and the recorded settings given back through --set pass again.
+// (no_turning 0.07 rad/s at 1/240 s and 20 iterations). The first of ODE's knobs, dWorldStep's
+// exact LCP, keeps it from turning at the scene's step; the search records it, and the recorded
+// settings given back through --set pass again.
 TEST_CASE("stability --tune finds a passing setting that --set reproduces", "[registry]") {
   const fs::path dir = scratch("registry_tune");
   const std::string hard = std::string(BOXPILE_FIXTURES_DIR) + "/hard/flat_drop.json";
@@ -568,22 +570,19 @@ TEST_CASE("stability --tune finds a passing setting that --set reproduces", "[re
   const json& tuned = cell.at("tuned");
   REQUIRE(tuned.at("passed").get<bool>());
   const json& settings = tuned.at("settings");
-  // A rung of the ladder: dt halved k times and the iterations doubled as often.
-  const double dt = settings.at("dt").get<double>();
-  const int iterations = settings.at("iterations").get<int>();
-  CHECK(dt < cell.at("settings").at("dt").get<double>());
-  CHECK(iterations * dt == Approx(20 * cell.at("settings").at("dt").get<double>()).epsilon(1e-12));
-  // Its cost is the run's, per simulated second, and above the default's (more steps, more passes).
+  CHECK(settings == json{{"stepper", "world"}});
+  CHECK(tuned.at("attempts") == 2);  // as given, then the first knob
   CHECK(tuned.at("us_per_sim_s").get<double>() > 0.0);
   for (const json& check : tuned.at("checks")) CHECK(check.at("passed").get<bool>());
   CHECK_THAT(read(dir / "tuned" / "stability.md"), Contains("## The cheapest passing settings (--tune)"));
+  CHECK_THAT(read(dir / "tuned" / "stability.md"), Contains("| flat_drop | stepper=\"world\" |"));
 
   std::string set;
   for (const auto& [key, value] : settings.items()) set += " --set " + key + "=" + value.dump();
   REQUIRE(run_boxpile("stability --engines ode --scenes " + hard + set + " --report " + (dir / "again").string()) == 0);
   const json again = json::parse(read(dir / "again" / "stability.json")).at("cells").at(0);
   CHECK(again.at("passed").get<bool>());
-  CHECK(again.at("settings").at("dt") == settings.at("dt"));
+  CHECK(again.at("settings").at("stepper") == "world");
   // A budget of 0 s stops at the run as given: the closest attempt is it, and says so.
   REQUIRE(run_boxpile("stability --engines ode --scenes " + hard + " --tune --tune-budget 0 --report " +
                       (dir / "no_budget").string()) == 0);
@@ -591,6 +590,76 @@ TEST_CASE("stability --tune finds a passing setting that --set reproduces", "[re
   CHECK(!spent.at("passed").get<bool>());
   CHECK(spent.at("out_of_budget").get<bool>());
   CHECK(spent.at("attempts") == 1);
+}
+
+// Every knob --tune tries is one of its engine's settings, with a value the engine's table takes,
+// and the moves scaled with the scene are: a slop a tenth of the allowed depth, a time constant
+// twice the step.
+TEST_CASE("every tune move is a valid setting of its engine, scaled with the scene", "[registry]") {
+  add_node_engines();
+  const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/hard/thin_plates.json");
+  for (const std::string& engine : engines_with_tune_moves()) {
+    INFO(engine);
+    const std::vector<TuneMove> moves = tune_moves(engine, scene, 0.004);
+    CHECK(!moves.empty());
+    const std::vector<SettingInfo> table = engine_settings(engine);
+    for (const TuneMove& m : moves) {
+      INFO(m.label);
+      CHECK(!m.why.empty());
+      for (const auto& [key, value] : m.settings.items()) {
+        INFO(key);
+        const auto row = std::find_if(table.begin(), table.end(), [&](const SettingInfo& s) { return s.key == key; });
+        REQUIRE(row != table.end());
+        const json doc = {{"v", value}};
+        CHECK_NOTHROW(check_setting_value(*row, json_input::JsonNode(doc, "move").at("v")));
+      }
+    }
+  }
+  // thin_plates: 1 cm plates, a 0.1 mm penetration limit: ODE's surface layer 10 µm.
+  const std::vector<TuneMove> ode = tune_moves("ode", scene, 0.004);
+  CHECK(ode.at(1).settings.at("surface_layer").get<double>() == Approx(1e-5));
+  CHECK(tune_moves("mujoco", scene, 0.004).at(0).settings.at("solref_timeconst").get<double>() == Approx(0.008));
+  CHECK(tune_moves("own", scene, 0.004).empty());
+}
+
+// `--shard I/N` runs every N-th cell; stability-merge joins the shards into the report one run
+// gives, cell for cell (timings aside), and refuses a shard given twice or a run left incomplete.
+TEST_CASE("stability shards merge into the unsharded run's report", "[registry]") {
+  const fs::path dir = scratch("registry_shards");
+  const std::string scenes = std::string(BOXPILE_FIXTURES_DIR) + "/hard/flat_drop.json " + BOXPILE_FIXTURES_DIR +
+                             "/hard/edge_drop.json";
+  const std::string run = "stability --engines own,ode --scenes " + scenes;
+  REQUIRE(run_boxpile(run + " --report " + (dir / "whole").string()) == 0);
+  REQUIRE(run_boxpile(run + " --shard 1/3 --report " + (dir / "s1").string()) == 0);
+  REQUIRE(run_boxpile(run + " --shard 2/3 --report " + (dir / "s2").string()) == 0);
+  REQUIRE(run_boxpile(run + " --shard 3/3 --report " + (dir / "s3").string()) == 0);
+  const json s1 = json::parse(read(dir / "s1" / "stability.json"));
+  CHECK(s1.at("cells").size() == 2u);  // positions 0 and 3 of 4
+  CHECK(s1.at("shards") == json{"1/3"});
+  CHECK(s1.at("cells_total") == 4);
+  REQUIRE(run_boxpile("stability-merge " + (dir / "s3").string() + " " + (dir / "s1").string() + " " +
+                      (dir / "s2").string() + " --report " + (dir / "merged").string()) == 0);
+  const json whole = json::parse(read(dir / "whole" / "stability.json"));
+  const json merged = json::parse(read(dir / "merged" / "stability.json"));
+  REQUIRE(merged.at("cells").size() == whole.at("cells").size());
+  for (std::size_t k = 0; k < whole.at("cells").size(); ++k) {
+    json a = whole.at("cells")[k], b = merged.at("cells")[k];
+    for (json* c : {&a, &b})
+      for (const char* timing : {"us_per_step", "us_per_sim_s", "wall_seconds"}) c->erase(timing);
+    CHECK(a == b);
+  }
+  CHECK(merged.at("shards") == json({"1/3", "2/3", "3/3"}));
+  CHECK_THAT(read(dir / "merged" / "stability.md"), Contains("in 3 shards"));
+  // A shard given twice, and a run left incomplete: exit 2, nothing written.
+  CHECK(run_boxpile("stability-merge " + (dir / "s1").string() + " " + (dir / "s1").string() + " " +
+                    (dir / "s2").string() + " " + (dir / "s3").string() + " --report " + (dir / "twice").string()) == 2);
+  CHECK(!fs::exists(dir / "twice"));
+  CHECK(run_boxpile("stability-merge " + (dir / "s1").string() + " " + (dir / "s2").string() + " --report " +
+                    (dir / "part").string()) == 2);
+  CHECK(!fs::exists(dir / "part"));
+  CHECK(run_boxpile("stability-merge " + (dir / "whole").string() + " --report " + (dir / "unsharded").string()) == 2);
+  CHECK(run_boxpile(run + " --shard 4/3 --report " + (dir / "bad").string()) == 2);
+  CHECK(!fs::exists(dir / "bad"));
 }
 
 // The half extents' range in docs/scene-format.md is the loader's (sim/limits.hpp), and the

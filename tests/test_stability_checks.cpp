@@ -35,19 +35,19 @@ const SceneCheckResult& find(const std::vector<SceneCheckResult>& results, const
 }  // namespace
 
 TEST_CASE("a body at rest passes every check", "[checks]") {
-  const Scene s = one_box(R"({"energy_rise": 1e-6, "rest": {"kinetic_per_body": 1e-6, "max_move": 1e-3},
+  const Scene s = one_box(R"({"energy_rise": 1e-6, "rest": {"speed": 1e-3, "max_move": 1e-3},
                               "no_turning": {"limit": 1e-3}})");
   RunMonitor m(s);
   for (long k = 0; k <= 100; ++k) m.observe(k, {state({0, 0, 0.5})});
   const std::vector<SceneCheckResult> r = m.evaluate();
   CHECK(all_passed(r));
-  CHECK(r.size() == 6);  // finite, energy, penetration, rest kinetic and move, turning
+  CHECK(r.size() == 6);  // finite, energy, penetration, rest speed and move, turning
   CHECK(m.measures().energy_start == Approx(2 * 9.81 * 0.5));
   CHECK_FALSE(m.measures().moved_at_step);
 }
 
 TEST_CASE("energy that rises, a body that keeps moving and a spin are caught", "[checks]") {
-  const Scene s = one_box(R"({"energy_rise": 1e-6, "rest": {"kinetic_per_body": 1e-6, "max_move": 1e-3},
+  const Scene s = one_box(R"({"energy_rise": 1e-6, "rest": {"speed": 1e-3, "max_move": 1e-3},
                               "no_turning": {"limit": 1e-3, "until": 0.5}})");
   RunMonitor m(s);
   m.observe(0, {state({0, 0, 0.5})});
@@ -63,8 +63,9 @@ TEST_CASE("energy that rises, a body that keeps moving and a spin are caught", "
   CHECK_FALSE(find(r, "energy_rise").passed);
   CHECK(find(r, "rest_move").value == Approx(0.01));
   CHECK(m.measures().moved_at_step == 10);
-  // Kinetic energy at the end: the rotation's only.
-  CHECK(find(r, "rest_kinetic").value == Approx(spin_energy));
+  // The fastest point at the end: the spin's, 2 rad/s at the unit cube's corner sqrt(3)/2 m out.
+  CHECK(find(r, "rest_speed").value == Approx(2.0 * std::sqrt(0.75)));
+  CHECK(find(r, "rest_speed").key == "rest");
   // The spin came after `until`: not counted.
   CHECK(find(r, "no_turning").passed);
   CHECK(first_instability(r)->name == "energy_rise");
@@ -139,4 +140,40 @@ TEST_CASE("scene checks: unknown keys and unknown bodies are errors naming the p
   CHECK(error_of(R"({"rest": {"max_move": -1}})").find("checks.rest.max_move: must be > 0") != std::string::npos);
   CHECK(error_of(R"({"stays_behind": [{"body": "box", "normal": [0, 0, 0], "offset": 0}]})") ==
         "t.json: checks.stays_behind[0].normal: must not be zero");
+  // Rest is judged by speed; the old energy limit is refused with what replaced it.
+  CHECK(error_of(R"({"rest": {"kinetic_per_body": 1e-6}})") ==
+        "t.json: checks.rest.kinetic_per_body: is no longer a check: rest is judged by speed, \"speed\" (m/s)");
+  // A reason must be for a check the scene holds, and say something.
+  CHECK(error_of(R"({"reasons": {"rebound": "why"}})") ==
+        "t.json: checks.reasons.rebound: gives a reason for a check the scene does not hold");
+  CHECK(error_of(R"({"reasons": {"penetration": ""}})") == "t.json: checks.reasons.penetration: must not be empty");
+  CHECK(error_of(R"({"reasons": {"rest_move": "x"}})").find("unknown key \"rest_move\"") != std::string::npos);
+}
+
+TEST_CASE("rest is judged by speed whatever the mass, and each result carries its scene key and reason", "[checks]") {
+  // 0.5 mm/s passes a 1 mm/s limit for a 1,000 kg box (kinetic energy 1.25e-4 J, which the old
+  // 1e-6 J per body refused), and 2 mm/s fails it for a 1 kg one (2e-6 J).
+  auto rest_speed = [](double mass, double speed) {
+    const Scene s = parse_scene(R"({"name": "t", "time": {"dt": 0.01, "duration": 1}, "ground": {},
+      "bodies": [{"name": "box", "mass": )" + std::to_string(mass) + R"(, "half_extents": [0.5, 0.5, 0.5], "position": [0, 0, 0.5]}],
+      "checks": {"rest": {"speed": 1e-3, "max_move": 1e-3},
+                 "reasons": {"rest": "the rest reason", "penetration": "the penetration reason"}}})", "t.json");
+    RunMonitor m(s);
+    m.observe(0, {state({0, 0, 0.5})});
+    m.observe(1, {state({0, 0, 0.5}, {speed, 0, 0})});
+    const std::vector<SceneCheckResult> r = m.evaluate();
+    CHECK(find(r, "rest_speed").reason == "the rest reason");
+    CHECK(find(r, "rest_move").reason == "the rest reason");
+    CHECK(find(r, "penetration").reason == "the penetration reason");
+    CHECK(find(r, "energy_rise").key == "energy_rise");
+    CHECK(find(r, "energy_rise").reason.empty());
+    CHECK(checks_without_reason(s.checks) == std::vector<std::string_view>{"energy_rise"});
+    return find(r, "rest_speed");
+  };
+  const SceneCheckResult heavy = rest_speed(1000.0, 5e-4);
+  CHECK(heavy.passed);
+  CHECK(heavy.value == Approx(5e-4));
+  const SceneCheckResult light = rest_speed(1.0, 2e-3);
+  CHECK_FALSE(light.passed);
+  CHECK(light.value == Approx(2e-3));
 }

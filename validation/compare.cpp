@@ -205,6 +205,27 @@ double growth_rate(const RunDifference& d, double perturbation) {
   return t > 0.0 ? std::log(*largest / perturbation) / t : 0.0;
 }
 
+// "chaos" is a disagreement no larger than perturbed starts cause: with outcome statistics, a
+// pair whose outcomes differ beyond the engines' own spread is "differ" instead, and every pair
+// carries its start-by-start agreement.
+void judge_chaos_by_outcomes(const OutcomeStatistics& outcomes, std::vector<PairComparison>& pairs) {
+  for (PairComparison& p : pairs) {
+    for (const OutcomePair& o : outcomes.pairs) {
+      if (!((o.a == p.difference.a && o.b == p.difference.b) || (o.a == p.difference.b && o.b == p.difference.a)))
+        continue;
+      p.starts_compared = o.starts_compared;
+      p.starts_agreeing = o.starts_agreeing;
+      if (p.verdict != "chaos" || !o.differ) break;
+      p.verdict = "differ";
+      for (const MeasureTest& t : o.tests)
+        if (t.differ) p.beyond_chaos += (p.beyond_chaos.empty() ? "" : ", ") + t.measure;
+      p.beyond_chaos = "the outcomes over " + std::to_string(o.starts_compared) + " perturbed starts differ beyond "
+                       "their own spread (" + p.beyond_chaos + ")";
+      break;
+    }
+  }
+}
+
 std::string verdict(const RunDifference& d, const std::optional<double>& chaos_time) {
   if (!d.position_passes) return "agree";
   if (chaos_time && *d.position_passes >= kChaosFraction * *chaos_time) return "chaos";
@@ -514,6 +535,7 @@ CompareResult run_compare(const Scene& scene, const CompareSettings& settings) {
     std::vector<OutcomeEntry> entries;
     for (const std::string& name : names) entries.push_back({name, name, settings.settings_of(name)});
     result.outcomes = run_outcomes(scene, entries, settings.outcomes);
+    judge_chaos_by_outcomes(*result.outcomes, result.pairs);
   }
   result.findings = compare_findings(result);
   return result;

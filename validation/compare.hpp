@@ -170,6 +170,12 @@ struct PairComparison {
   std::string verdict;
   std::string unstable_engine;  // the engine that is unstable (verdict "unstable")
   std::string instability;      // its failed check, e.g. "energy_rise 0.11 > 0.0001"
+  // With `--starts N` (CompareResult::outcomes): how often the two agree start by start, and
+  // whether their outcomes differ beyond what perturbed starts cause. "chaos" holds only when
+  // they do not: a pair whose outcomes differ is "differ" with `beyond_chaos` saying which
+  // measures.
+  std::optional<int> starts_compared, starts_agreeing;
+  std::string beyond_chaos;
 };
 
 // One detector's contact set of a pair: its point count and how it differs from ours.

@@ -1,5 +1,6 @@
 #include "boxpile/validation/outcomes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -116,6 +117,32 @@ Scene perturbed_start(const Scene& scene, double distance, std::uint64_t seed, i
   return s;
 }
 
+namespace {
+
+// OutcomePair's start-by-start counts: a start agrees when every measure of the two runs from it
+// lies within the larger of the engines' spreads of that measure (at least 1e-12 of its size, so
+// that two engines that always give one value agree when they give the same one).
+void count_agreeing_starts(const EngineOutcomes& a, const EngineOutcomes& b, OutcomePair& p) {
+  for (std::size_t ia = 0; ia < a.starts.size(); ++ia) {
+    const auto ib = std::find(b.starts.begin(), b.starts.end(), a.starts[ia]);
+    if (ib == b.starts.end()) continue;
+    const std::size_t jb = static_cast<std::size_t>(ib - b.starts.begin());
+    ++p.starts_compared;
+    bool agree = true;
+    for (const auto& [name, values] : a.samples) {
+      const auto other = b.samples.find(name);
+      if (other == b.samples.end()) continue;
+      const double va = values[ia], vb = other->second[jb];
+      const double spread = std::max({a.summary.at(name).sd, b.summary.at(name).sd,
+                                      1e-12 * std::max(std::abs(va), std::abs(vb))});
+      agree = agree && std::abs(va - vb) <= spread;
+    }
+    p.starts_agreeing += agree ? 1 : 0;
+  }
+}
+
+}  // namespace
+
 std::string OutcomePair::verdict() const { return differ ? "differ beyond their own spread" : "within chaos"; }
 
 OutcomeStatistics run_outcomes(const Scene& scene, const std::vector<OutcomeEntry>& entries,
@@ -144,6 +171,7 @@ OutcomeStatistics run_outcomes(const Scene& scene, const std::vector<OutcomeEntr
         continue;
       }
       for (const auto& [name, value] : outcome_measures(start, first, r.final_states)) e.samples[name].push_back(value);
+      e.starts.push_back(i);
     }
     for (const auto& [name, values] : e.samples) e.summary[name] = summarize(values);
     out.engines.push_back(std::move(e));
@@ -167,6 +195,7 @@ OutcomeStatistics run_outcomes(const Scene& scene, const std::vector<OutcomeEntr
         p.differ = p.differ || t.differ;
         p.tests.push_back(std::move(t));
       }
+      count_agreeing_starts(out.engines[a], out.engines[b], p);
       out.pairs.push_back(std::move(p));
     }
   }
@@ -199,7 +228,8 @@ nlohmann::json outcomes_json(const OutcomeStatistics& s) {
                        {"welch_p", t.welch.p_value},
                        {"differ", t.differ}});
     }
-    pairs.push_back({{"a", p.a}, {"b", p.b}, {"differ", p.differ}, {"verdict", p.verdict()}, {"tests", tests}});
+    pairs.push_back({{"a", p.a}, {"b", p.b}, {"differ", p.differ}, {"verdict", p.verdict()},
+                     {"starts_compared", p.starts_compared}, {"starts_agreeing", p.starts_agreeing}, {"tests", tests}});
   }
   return {{"starts", s.settings.starts},
           {"perturbation", s.settings.perturbation},
@@ -233,11 +263,12 @@ std::string outcomes_markdown(const OutcomeStatistics& s) {
   md << "\nBetween engines, per measure the Kolmogorov-Smirnov distance D and its p-value, and Welch's p-value "
         "for the means; a pair differs beyond its own spread when some measure's KS p-value is below "
      << format_number(s.settings.significance, "%g") << " / " << kOutcomeMeasures.size()
-     << " (Bonferroni over the measures):\n\n| pair |";
+     << " (Bonferroni over the measures). Start by start, the two agree on a start when every measure of their "
+        "runs from it lies within the larger of their own spreads (sd):\n\n| pair |";
   for (const OutcomeMeasure& m : kOutcomeMeasures) md << ' ' << m.name << ": D, p (Welch p) |";
-  md << " verdict |\n|---|";
+  md << " starts agreeing | verdict |\n|---|";
   for (std::size_t i = 0; i < kOutcomeMeasures.size(); ++i) md << "---|";
-  md << "---|\n";
+  md << "---|---|\n";
   for (const OutcomePair& p : s.pairs) {
     md << "| " << p.a << " – " << p.b << " |";
     for (const MeasureTest& t : p.tests) {
@@ -245,7 +276,7 @@ std::string outcomes_markdown(const OutcomeStatistics& s) {
          << format_number(t.ks.p_value, "%.2g") << (t.differ ? "**" : "") << " (" << format_number(t.welch.p_value, "%.2g")
          << ") |";
     }
-    md << ' ' << p.verdict() << " |\n";
+    md << ' ' << p.starts_agreeing << " of " << p.starts_compared << " | " << p.verdict() << " |\n";
   }
   md << '\n';
   return md.str();

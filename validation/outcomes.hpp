@@ -70,6 +70,7 @@ struct EngineOutcomes {
   std::string label;
   std::string engine;
   std::map<std::string, std::vector<double>> samples;  // measure -> one value per start
+  std::vector<int> starts;  // the start number of each sample (a start that went non-finite has none)
   std::map<std::string, SampleSummary> summary;
   int non_finite = 0;  // starts whose run went non-finite (left out of the samples)
 };
@@ -85,6 +86,11 @@ struct OutcomePair {
   std::string a, b;  // labels
   std::vector<MeasureTest> tests;  // per measure, kOutcomeMeasures' order
   bool differ = false;             // any measure differs
+  // Start by start: the starts both engines finished, and those on which the two agree, every
+  // measure within the larger of the two engines' own spreads (sd over the starts: what a
+  // perturbed start alone already changes).
+  int starts_compared = 0;
+  int starts_agreeing = 0;
   // "differ beyond their own spread" or "within chaos".
   std::string verdict() const;
 };

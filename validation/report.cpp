@@ -134,6 +134,9 @@ json pair_json(const CompareResult& r, const PairComparison& p) {
           {"verdict", p.verdict},
           {"unstable_engine", p.unstable_engine.empty() ? json(nullptr) : json(p.unstable_engine)},
           {"instability", p.instability.empty() ? json(nullptr) : json(p.instability)},
+          {"starts_compared", p.starts_compared ? json(*p.starts_compared) : json(nullptr)},
+          {"starts_agreeing", p.starts_agreeing ? json(*p.starts_agreeing) : json(nullptr)},
+          {"beyond_chaos", p.beyond_chaos.empty() ? json(nullptr) : json(p.beyond_chaos)},
           {"t", d.t},
           {"max_position", d.max_position},
           {"bodies", bodies}};
@@ -275,6 +278,8 @@ std::string pair_line(const PairComparison& p, double threshold) {
                     : std::string("; neither diverges from itself that far");
   s += "; verdict: " + p.verdict;
   if (p.verdict == "unstable") s += " (" + p.unstable_engine + ": " + p.instability + ")";
+  if (!p.beyond_chaos.empty()) s += " (" + p.beyond_chaos + ")";
+  if (p.starts_compared) s += "; agree on " + std::to_string(*p.starts_agreeing) + " of " + std::to_string(*p.starts_compared) + " perturbed starts";
   return s;
 }
 
@@ -288,10 +293,14 @@ std::string impact_kind_title(ImpactKind k) {
 
 std::string verdict_text(const PairComparison& p) {
   const std::string& verdict = p.verdict;
-  if (verdict == "unstable") return p.unstable_engine + " is unstable (" + p.instability + "), the other is not";
-  if (verdict == "agree") return "agree within the threshold";
-  if (verdict == "chaos") return "differ no sooner than chaos explains";
-  return "differ before chaos explains it";
+  const std::string starts = p.starts_compared ? "; agree on " + std::to_string(*p.starts_agreeing) + " of " +
+                                                     std::to_string(*p.starts_compared) + " perturbed starts"
+                                               : std::string();
+  if (verdict == "unstable") return p.unstable_engine + " is unstable (" + p.instability + "), the other is not" + starts;
+  if (verdict == "agree") return "agree within the threshold" + starts;
+  if (verdict == "chaos") return "differ no sooner than chaos explains" + starts;
+  if (!p.beyond_chaos.empty()) return "differ no sooner than chaos would explain, but " + p.beyond_chaos + starts;
+  return "differ before chaos explains it" + starts;
 }
 
 }  // namespace

@@ -7,12 +7,14 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/run_loop.hpp"
+#include "boxpile/validation/tune_moves.hpp"
 
 namespace boxpile {
 namespace {
@@ -125,6 +127,8 @@ namespace {
 
 // The ladder's rungs: dt / 2^k with the solver's passes times 2^k (at most dt0 / 2^kMostRungs).
 constexpr int kMostRungs = 8;
+// Rungs tried above a passing cell's step: dt * 2, dt * 4.
+constexpr int kCoarserRungs = 2;
 // A rung that does not shrink the worst miss below this fraction of the best so far does not count as
 // an improvement (rounding of the measures).
 constexpr double kImproves = 0.99;
@@ -136,6 +140,18 @@ std::optional<SettingInfo> setting_named(std::string_view engine, std::initializ
     for (const SettingInfo& s : all)
       if (s.key == key) return s;
   return std::nullopt;
+}
+
+// Every key a move sets is one of the engine's settings: a move the engine cannot take is a
+// defect of the moves table, not of the user's input.
+void check_tune_moves(std::string_view engine, const std::vector<TuneMove>& moves) {
+  if (moves.empty()) return;
+  const std::vector<SettingInfo> all = engine_settings(engine);
+  for (const TuneMove& m : moves)
+    for (const auto& [key, value] : m.settings.items())
+      if (std::none_of(all.begin(), all.end(), [&](const SettingInfo& s) { return s.key == key; }))
+        throw std::logic_error("tune move \"" + m.label + "\" of " + std::string(engine) + " sets \"" + key +
+                               "\", which is not one of its settings");
 }
 
 TunedCell tuned_from(const StabilityCell& cell, const nlohmann::json& tried, int attempts) {
@@ -156,10 +172,11 @@ TunedCell tune_cell(const Scene& scene, std::string_view engine, const Stability
   const Clock::time_point start = Clock::now();
   const std::string name(engine);
   TunedCell best = tuned_from(at_given, json::object(), 1);
-  if (at_given.passed) return best;
   double best_miss = worst_miss(at_given.checks);
   const json given = settings.settings_of(name);
   const double dt0 = at_given.settings.at("dt").get<double>();
+  const std::vector<TuneMove> moves = tune_moves(engine, scene, dt0);
+  check_tune_moves(engine, moves);
   // The passes the cell ran with ("own" on a penalty scene runs no contact passes: none then).
   std::optional<SettingInfo> passes = setting_named(engine, {"iterations", "contact_passes"});
   if (passes && !(at_given.settings.contains(passes->key) && at_given.settings[passes->key].is_number_integer())) {
@@ -167,9 +184,20 @@ TunedCell tune_cell(const Scene& scene, std::string_view engine, const Stability
   }
   const int passes0 = passes ? at_given.settings[passes->key].get<int>() : 0;
   auto spent = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-  // One attempt: the given settings with `tried` over them; true when it passed.
+  auto out_of_budget = [&] {
+    if (spent() < settings.tune_budget) return false;
+    best.out_of_budget = true;
+    return true;
+  };
+  // One attempt: the given settings with `tried` over them. It replaces the best so far when it is
+  // better: while nothing passed, when it passes or its worst miss shrinks; once something
+  // passed, when it passes at less cost.
   auto run = [&](const json& tried, const std::string& label) {
     StabilitySettings one = settings;
+    // The budget bounds the search's wall time: an attempt stops where the budget ends (and
+    // fails its "finished" check then), however slow the engine is on the scene.
+    const double left = std::max(settings.tune_budget - spent(), 1e-3);
+    one.cell_time_limit = settings.cell_time_limit > 0.0 ? std::min(settings.cell_time_limit, left) : left;
     json all = given;
     for (const auto& [k, v] : tried.items()) all[k] = v;
     one.engine_settings[name] = all;
@@ -177,36 +205,69 @@ TunedCell tune_cell(const Scene& scene, std::string_view engine, const Stability
     const StabilityCell cell = run_stability_cell(scene, engine, one);
     ++best.attempts;
     const double miss = worst_miss(cell.checks);
-    const bool better = cell.passed || miss < kImproves * best_miss;
+    // An attempt the budget cut short is no candidate: it did not run the scene.
+    const bool better = !cell.out_of_time && (best.passed ? cell.passed && cell.us_per_sim_s() < best.us_per_sim_s
+                                                          : cell.passed || miss < kImproves * best_miss);
     if (better) {
       const int attempts = best.attempts;
       best = tuned_from(cell, tried, attempts);
       best_miss = miss;
     }
-    return better;
+    if (cell.out_of_time) best.out_of_budget = true;
+    return std::make_pair(better, cell.passed && !cell.out_of_time);
+  };
+  auto with = [](json base, const json& more) {
+    for (const auto& [k, v] : more.items()) base[k] = v;
+    return base;
   };
 
-  json closest = json::object();
+  if (at_given.passed) {
+    // Passing as given: a coarser step (cheaper), then the moves that are cheaper by themselves.
+    for (int k = 1; k <= kCoarserRungs; ++k) {
+      if (out_of_budget()) return best;
+      const double scale = std::ldexp(1.0, k);
+      if (!run({{"dt", dt0 * scale}}, "dt*" + std::to_string(static_cast<long>(scale))).second) break;
+    }
+    for (const TuneMove& m : moves) {
+      if (!m.cheaper) continue;
+      if (out_of_budget()) return best;
+      run(with(best.settings, m.settings), m.label);
+    }
+    return best;
+  }
+
+  // Failing as given: the engine's own knobs one by one, cheapest first, at the given step.
+  json base = json::object();
+  bool ladder_passes = true;
+  for (const TuneMove& m : moves) {
+    if (out_of_budget()) return best;
+    if (run(m.settings, m.label).first) {
+      base = m.settings;
+      ladder_passes = m.ladder_passes;
+      if (best.passed) return best;
+    }
+  }
+  if (!ladder_passes) passes.reset();
+
+  // Then the ladder, from the best knob found.
+  json closest = base;
   int flat = 0;
   for (int k = 1; k <= kMostRungs && flat < 2; ++k) {
-    if (spent() >= settings.tune_budget) {
-      best.out_of_budget = true;
-      return best;
-    }
+    if (out_of_budget()) return best;
     const double scale = std::ldexp(1.0, k);
     const double dt = dt0 / scale;
     if (!(dt > 0.0) || static_cast<double>(step_count(dt, scene.time.duration)) >
                            static_cast<double>(settings.max_steps)) {
       break;
     }
-    json tried = {{"dt", dt}};
+    json tried = with(base, {{"dt", dt}});
     std::string label = "dt/" + std::to_string(static_cast<long>(scale));
     if (passes) {
       const int n = static_cast<int>(std::min(passes->max, passes0 * scale));
       tried[passes->key] = n;
       label += ", " + passes->key + " " + std::to_string(n);
     }
-    if (run(tried, label)) {
+    if (run(tried, label).first) {
       flat = 0;
       closest = tried;
       if (best.passed) return best;
@@ -216,10 +277,7 @@ TunedCell tune_cell(const Scene& scene, std::string_view engine, const Stability
   }
   // The engine's own knob for resting scenes, on the closest rung.
   if (const std::optional<SettingInfo> sleep = setting_named(engine, {"auto_disable", "sleeping"})) {
-    if (spent() >= settings.tune_budget) {
-      best.out_of_budget = true;
-      return best;
-    }
+    if (out_of_budget()) return best;
     json tried = closest;
     tried[sleep->key] = true;
     run(tried, (closest.empty() ? std::string("the given settings") : "the closest rung") + ", " + sleep->key);
@@ -236,15 +294,25 @@ StabilityResult run_stability(const std::vector<Scene>& scenes, const StabilityS
   }
   result.scenes = scenes;
 
-  // Work per engine is measured separately: ODE and Bullet step much faster than ours.
-  double total_work = 0.0;
-  for (const Scene& s : scenes) total_work += work_of(s);
-  std::vector<double> work_done(result.engines.size(), 0.0), seconds_spent(result.engines.size(), 0.0);
   const Clock::time_point run_start = Clock::now();
-  const int total = static_cast<int>(scenes.size() * result.engines.size());
-  int index = 0;
+  result.cells_total = static_cast<int>(scenes.size() * result.engines.size());
+  const Shard& shard = settings.shard;
+  if (shard.count > 1) result.shards = {std::to_string(shard.index) + "/" + std::to_string(shard.count)};
+  auto in_this_shard = [&](int position) { return position % shard.count == shard.index - 1; };
+  // Work per engine is measured separately (ODE and Bullet step much faster than ours), over the
+  // cells of this shard.
+  const std::size_t engines = result.engines.size();
+  std::vector<double> total_work(engines, 0.0), work_done(engines, 0.0), seconds_spent(engines, 0.0);
+  int total = 0;
+  for (int k = 0; k < result.cells_total; ++k) {
+    if (!in_this_shard(k)) continue;
+    ++total;
+    total_work[static_cast<std::size_t>(k) % engines] += work_of(scenes[static_cast<std::size_t>(k) / engines]);
+  }
+  int index = 0, position = -1;
   for (const Scene& scene : scenes) {
     for (std::size_t e = 0; e < result.engines.size(); ++e) {
+      if (!in_this_shard(++position)) continue;
       const std::string& engine = result.engines[e];
       const Clock::time_point cell_start = Clock::now();
       auto report = [&](double fraction) {
@@ -263,7 +331,7 @@ StabilityResult run_stability(const std::vector<Scene>& scenes, const StabilityS
           const double done = work_done[k] + (k == e ? fraction * work_of(scene) : 0.0);
           const double spent = seconds_spent[k] + (k == e ? in_cell : 0.0);
           const double rate = done > 0.0 && spent > 0.0 ? spent / done : slowest;
-          remaining += rate * (total_work - done);
+          remaining += rate * (total_work[k] - done);
         }
         settings.progress({scene.name, engine, index, total, fraction, elapsed, remaining, {}});
       };

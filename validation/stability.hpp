@@ -17,6 +17,7 @@
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/sim/scene.hpp"
 #include "boxpile/validation/stability_checks.hpp"
+#include "boxpile/validation/sweep_grid.hpp"
 
 namespace boxpile {
 
@@ -53,6 +54,9 @@ struct StabilitySettings {
   // pile), so that the catalogue still ends and says so.
   double cell_time_limit = 0.0;
   long max_steps = 10'000'000;
+  // `--shard I/N`: only the cells whose position k (scene by scene, the engines in order within
+  // each) has k mod N = I - 1; `boxpile stability-merge` joins the shards' reports.
+  Shard shard;
 };
 
 // The cheapest settings `stability --tune` found for one cell.
@@ -95,7 +99,11 @@ struct StabilityResult {
   // The scenes were the whole catalogue (fixtures/hard/): only then do the reports speak of "the
   // hard scenes".
   bool whole_catalogue = false;
-  double wall_seconds = 0.0;         // the whole run
+  double wall_seconds = 0.0;         // the whole run (a merge: the sum of its shards')
+  // "I/N" of each shard this result holds (empty for a run without --shard), and how many cells
+  // the whole run has (scenes times engines), which a merge must hold all of.
+  std::vector<std::string> shards;
+  int cells_total = 0;
   // How many cells of our engine ("own") failed; whether none did.
   int own_failures() const;
   bool own_passed() const { return own_failures() == 0; }
@@ -112,12 +120,15 @@ double miss_factor(const SceneCheckResult& check);
 double worst_miss(const std::vector<SceneCheckResult>& checks);
 
 // The search of `stability --tune` for one scene and engine, from `at_given` (the cell at the
-// given settings): not a grid but a ladder, the time step halved and the engine's solver passes
-// ("iterations", else "contact_passes") doubled together until every check passes, the worst
-// miss stops shrinking for two rungs, the steps pass settings.max_steps or the budget is spent;
-// then, if none passed, the engine's sleeping switch ("auto_disable", "sleeping") on the closest
-// rung. Returns the first passing attempt (the cheapest rung that passes: each rung costs more
-// than the one before) or, when none passed, the closest one.
+// given settings). A failing cell: first the engine's own knobs (tune_moves.hpp) one at a time,
+// cheapest first, at the given step; then, from the best of them, a ladder, the time step halved
+// and the engine's solver passes ("iterations", else "contact_passes") doubled together until
+// every check passes, the worst miss stops shrinking for two rungs, the steps pass
+// settings.max_steps or the budget is spent; then, if none passed, the engine's sleeping switch
+// ("auto_disable", "sleeping") on the closest rung. Returns the first passing attempt (each step
+// of the search costs more than the one before) or, when none passed, the closest one. A passing
+// cell: a coarser step (dt * 2, dt * 4) and the moves that are cheaper in themselves, kept only
+// where they still pass at less cost.
 TunedCell tune_cell(const Scene& scene, std::string_view engine, const StabilitySettings& settings,
                     const StabilityCell& at_given, const std::function<void(std::string_view)>& attempt = {});
 

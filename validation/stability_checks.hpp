@@ -22,12 +22,14 @@ namespace boxpile {
 
 // One scene check's outcome (SceneChecks): the measured value against its limit.
 struct SceneCheckResult {
-  std::string name;   // "energy_rise", "rest_kinetic", "rest_move", "no_turning", "rebound", "slide mu_0.30", ...
+  std::string name;   // "energy_rise", "rest_speed", "rest_move", "no_turning", "rebound", "slide mu_0.30", ...
   double value = 0.0;
   double limit = 0.0;
   bool at_least = false;  // passes when value >= limit (else value <= limit)
   bool passed = false;
   std::string unit;  // "J", "m", "rad/s", "" for fractions
+  std::string key;     // the scene's check key it comes from ("rest" for rest_speed and rest_move)
+  std::string reason;  // why the limit is what it is (the scene's checks.reasons), empty if not given
 };
 
 // Error figures of one run, measured alike for every engine.
@@ -40,6 +42,7 @@ struct RunMeasures {
   double energy_change = 0.0;  // largest |E - E0| / |E0|
   double kinetic_end = 0.0;           // J, all bodies at the end
   double kinetic_end_max_body = 0.0;  // J, the largest of one body at the end
+  double speed_end_max = 0.0;         // m/s, the fastest point of any body at the end (|v| + |omega| r)
   double largest_move = 0.0;  // m, the farthest any body's position got from its start
   // The first step at which a body had moved farther than the scene's rest limit (its "collapse"),
   // unset when none did or the scene has no rest check.
@@ -78,6 +81,7 @@ class RunMonitor {
   const Scene& scene_;
   std::vector<RigidBody> bodies_;
   std::vector<Vec3> start_;  // body frame positions at the start
+  std::vector<double> radii_;  // m, per body: a sphere about its centre of mass that holds its boxes
   Vec3 up_ = Vec3::UnitZ();
   RunMeasures m_;
   double energy_now_ = 0.0, kinetic_now_ = 0.0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
 
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/format_number.hpp"
@@ -30,6 +31,7 @@ json measures_json(const RunMeasures& m) {
             {"energy_change", number(m.energy_change)},
             {"kinetic_end", number(m.kinetic_end)},
             {"kinetic_end_max_body", number(m.kinetic_end_max_body)},
+            {"speed_end_max", number(m.speed_end_max)},
             {"largest_move", number(m.largest_move)},
             {"moved_at_step", m.moved_at_step ? json(*m.moved_at_step) : json(nullptr)},
             {"height_error", number(m.height_error)},
@@ -86,7 +88,8 @@ json checks_json(const std::vector<SceneCheckResult>& checks) {
   json out = json::array();
   for (const SceneCheckResult& k : checks) {
     out.push_back({{"name", k.name}, {"value", number(k.value)}, {"limit", number(k.limit)},
-                   {"relation", k.at_least ? ">=" : "<="}, {"unit", k.unit}, {"passed", k.passed}});
+                   {"relation", k.at_least ? ">=" : "<="}, {"unit", k.unit}, {"passed", k.passed},
+                   {"key", k.key}, {"reason", k.reason}});
   }
   return out;
 }
@@ -130,7 +133,44 @@ std::string tuned_text(const StabilityResult& r, const StabilityCell& c) {
   return text + ", " + std::to_string(t.attempts) + " runs";
 }
 
+// One cell of "What each engine needs to pass": "as run, 0.9x", "stepper=\"world\", 3.1x", or
+// "none (rest_move 2.1x its limit)".
+std::string needs_text(const StabilityResult& r, const StabilityCell& c) {
+  const TunedCell& t = *c.tuned;
+  const double own = own_cost(r, c.scene);
+  if (!t.passed) {
+    const SceneCheckResult* worst = nullptr;
+    for (const SceneCheckResult& k : t.checks)
+      if (!worst || miss_factor(k) > miss_factor(*worst)) worst = &k;
+    std::string text = "none";
+    if (worst) text += " (" + worst->name + " " + fmt(miss_factor(*worst), "%.2g") + "x its limit)";
+    return text;
+  }
+  const std::string tried = settings_text(t.settings);
+  std::string text = c.passed && tried.empty() ? std::string("as run") : tried;
+  if (own > 0.0) text += ", " + fmt(t.us_per_sim_s / own, "%.2g") + "x";
+  return text;
+}
+
 }  // namespace
+
+std::string checks_markdown(const StabilityResult& r) {
+  std::ostringstream md;
+  md << "\n## The checks and why\n\nEvery check of every scene with its limit and the reason the scene gives "
+        "for it (its `checks.reasons`; \"-\" when it gives none).\n\n| scene | check | limit | why |\n|---|---|---|---|\n";
+  for (const Scene& s : r.scenes) {
+    const auto cell = std::find_if(r.cells.begin(), r.cells.end(), [&](const StabilityCell& c) {
+      return c.scene == s.name && c.checks.size() > 1;  // a cell that got past the finite check
+    });
+    if (cell == r.cells.end()) continue;
+    for (const SceneCheckResult& k : cell->checks) {
+      if (k.name == "finite") continue;
+      md << "| " << s.name << " | " << k.name << " | " << (k.at_least ? ">= " : "<= ") << fmt(k.limit)
+         << (k.unit.empty() ? "" : " " + k.unit) << " | " << (k.reason.empty() ? std::string("-") : k.reason) << " |\n";
+    }
+  }
+  return md.str();
+}
 
 json stability_json(const StabilityResult& r) {
   json cells = json::array();
@@ -159,11 +199,125 @@ json stability_json(const StabilityResult& r) {
   json scenes = json::array();
   for (const Scene& s : r.scenes) {
     scenes.push_back({{"name", s.name}, {"file", s.source}, {"note", s.note}, {"bodies", s.bodies.size()},
-                      {"dt", s.time.dt}, {"duration", s.time.duration}});
+                      {"dt", s.time.dt}, {"duration", s.time.duration}, {"reasons", s.checks.reasons}});
   }
   return {{"engines", r.engines}, {"scenes", scenes}, {"cells", cells}, {"own_passed", r.own_passed()},
-          {"whole_catalogue", r.whole_catalogue},
+          {"whole_catalogue", r.whole_catalogue}, {"shards", r.shards}, {"cells_total", r.cells_total},
           {"wall_seconds", r.wall_seconds}};
+}
+
+namespace {
+
+// Back from JSON: null (a NaN or infinity written) reads as NaN.
+double number_of(const json& j) { return j.is_number() ? j.get<double>() : std::nan(""); }
+
+std::vector<SceneCheckResult> checks_of(const json& checks) {
+  std::vector<SceneCheckResult> out;
+  for (const json& k : checks) {
+    out.push_back({k.at("name").get<std::string>(), number_of(k.at("value")), number_of(k.at("limit")),
+                   k.at("relation").get<std::string>() == ">=", k.at("passed").get<bool>(),
+                   k.at("unit").get<std::string>(), k.value("key", std::string()), k.value("reason", std::string())});
+  }
+  return out;
+}
+
+RunMeasures measures_of(const json& m) {
+  RunMeasures r;
+  r.finite = m.at("finite").get<bool>();
+  r.energy_start = number_of(m.at("energy_start"));
+  r.energy_rise = number_of(m.at("energy_rise"));
+  r.energy_rise_t = number_of(m.at("energy_rise_t"));
+  r.energy_change = number_of(m.at("energy_change"));
+  r.kinetic_end = number_of(m.at("kinetic_end"));
+  r.kinetic_end_max_body = number_of(m.at("kinetic_end_max_body"));
+  r.speed_end_max = number_of(m.at("speed_end_max"));
+  r.largest_move = number_of(m.at("largest_move"));
+  if (m.at("moved_at_step").is_number()) r.moved_at_step = m.at("moved_at_step").get<long>();
+  r.height_error = number_of(m.at("height_error"));
+  r.drift = number_of(m.at("drift"));
+  r.deepest_penetration = number_of(m.at("deepest_penetration"));
+  r.max_spin = number_of(m.at("max_spin"));
+  if (m.at("rebound").is_number()) r.rebound = m.at("rebound").get<double>();
+  r.smallest_edge = number_of(m.at("smallest_edge"));
+  return r;
+}
+
+}  // namespace
+
+StabilityResult stability_from_json(const json& doc, const std::function<Scene(const std::string&)>& load) {
+  StabilityResult r;
+  r.engines = doc.at("engines").get<std::vector<std::string>>();
+  for (const json& s : doc.at("scenes")) r.scenes.push_back(load(s.at("file").get<std::string>()));
+  for (const json& c : doc.at("cells")) {
+    StabilityCell cell;
+    cell.scene = c.at("scene").get<std::string>();
+    cell.engine = c.at("engine").get<std::string>();
+    cell.settings = c.at("settings");
+    cell.passed = c.at("passed").get<bool>();
+    cell.checks = checks_of(c.at("checks"));
+    cell.measures = measures_of(c.at("measures"));
+    cell.steps = c.at("steps").get<long>();
+    cell.out_of_time = c.at("out_of_time").get<bool>();
+    cell.refused = c.at("refused").is_string() ? c.at("refused").get<std::string>() : std::string();
+    cell.us_per_step = number_of(c.at("us_per_step"));
+    cell.wall_seconds = number_of(c.at("wall_seconds"));
+    if (const auto t = c.find("tuned"); t != c.end() && t->is_object()) {
+      TunedCell tuned;
+      tuned.passed = t->at("passed").get<bool>();
+      tuned.settings = t->at("settings");
+      tuned.us_per_sim_s = number_of(t->at("us_per_sim_s"));
+      tuned.checks = checks_of(t->at("checks"));
+      tuned.attempts = t->at("attempts").get<int>();
+      tuned.out_of_budget = t->at("out_of_budget").get<bool>();
+      cell.tuned = std::move(tuned);
+    }
+    r.cells.push_back(std::move(cell));
+  }
+  r.whole_catalogue = doc.at("whole_catalogue").get<bool>();
+  r.shards = doc.value("shards", std::vector<std::string>{});
+  r.cells_total = doc.value("cells_total", static_cast<int>(r.cells.size()));
+  r.wall_seconds = number_of(doc.at("wall_seconds"));
+  return r;
+}
+
+StabilityResult merge_stability(const std::vector<StabilityResult>& parts, const std::vector<std::string>& names) {
+  if (parts.empty()) throw std::invalid_argument("no reports to merge");
+  StabilityResult merged;
+  merged.engines = parts.front().engines;
+  merged.scenes = parts.front().scenes;
+  merged.whole_catalogue = parts.front().whole_catalogue;
+  merged.cells_total = parts.front().cells_total;
+  auto scene_names = [](const StabilityResult& r) {
+    std::vector<std::string> n;
+    for (const Scene& s : r.scenes) n.push_back(s.name);
+    return n;
+  };
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const StabilityResult& p = parts[k];
+    if (p.engines != merged.engines || scene_names(p) != scene_names(merged) || p.cells_total != merged.cells_total)
+      throw std::invalid_argument(names[k] + ": other engines or scenes than " + names[0] + "'s: shards of one run only");
+    if (p.shards.empty()) throw std::invalid_argument(names[k] + ": not a shard (a run without --shard)");
+    for (const std::string& s : p.shards) {
+      if (std::find(merged.shards.begin(), merged.shards.end(), s) != merged.shards.end())
+        throw std::invalid_argument(names[k] + ": shard " + s + " is given twice");
+      merged.shards.push_back(s);
+    }
+    merged.wall_seconds += p.wall_seconds;
+  }
+  // The cells in the run's own order: scene by scene, the engines in order within each.
+  for (const Scene& s : merged.scenes) {
+    for (const std::string& e : merged.engines) {
+      for (const StabilityResult& p : parts)
+        for (const StabilityCell& c : p.cells)
+          if (c.scene == s.name && c.engine == e) merged.cells.push_back(c);
+    }
+  }
+  if (static_cast<int>(merged.cells.size()) != merged.cells_total) {
+    throw std::invalid_argument("the shards hold " + std::to_string(merged.cells.size()) + " of the run's " +
+                                std::to_string(merged.cells_total) + " cells: a shard is missing");
+  }
+  std::sort(merged.shards.begin(), merged.shards.end());
+  return merged;
 }
 
 std::vector<PlotSpec> stability_plots(const StabilityResult& r) {
@@ -229,6 +383,26 @@ std::string stability_markdown(const StabilityResult& r, const std::vector<std::
          << fmt(c.us_per_sim_s(), "%.0f") << " µs/s | " << tuned_text(r, c) << " |\n";
     }
   }
+  if (std::any_of(r.cells.begin(), r.cells.end(), [](const StabilityCell& c) { return c.tuned.has_value(); })) {
+    md << "\n## What each engine needs to pass\n\nScene by scene: \"as run\" when the defaults pass (or a "
+          "coarser step where it passes at less cost), else the settings the search found; then the cost as a "
+          "multiple of our engine's cheapest passing one on the scene (µs of stepping per simulated second). "
+          "\"none\": nothing passed within the budget, with the closest attempt's worst check and how many times "
+          "its limit it was.\n\n| scene |";
+    for (const std::string& e : r.engines) md << ' ' << e << " |";
+    md << "\n|---|";
+    for (std::size_t k = 0; k < r.engines.size(); ++k) md << "---|";
+    md << '\n';
+    for (const Scene& s : r.scenes) {
+      md << "| " << s.name << " |";
+      for (const std::string& e : r.engines) {
+        const auto c = std::find_if(r.cells.begin(), r.cells.end(),
+                                    [&](const StabilityCell& x) { return x.scene == s.name && x.engine == e; });
+        md << ' ' << (c == r.cells.end() || !c->tuned ? std::string("-") : needs_text(r, *c)) << " |";
+      }
+      md << '\n';
+    }
+  }
   md << "\n## Failures per engine\n\n| engine | failing scenes | µs per step (mean over the cells) |\n|---|---|---|\n";
   for (const std::string& e : r.engines) {
     int failed = 0, cells = 0;
@@ -264,7 +438,14 @@ std::string stability_markdown(const StabilityResult& r, const std::vector<std::
   }
   md << "\n## Scenes\n\n";
   for (const Scene& s : r.scenes) md << "- **" << s.name << "** (`" << s.source << "`): " << s.note << '\n';
-  md << "\nRun time: " << fmt(r.wall_seconds, "%.1f") << " s.\n";
+  md << checks_markdown(r);
+  md << "\nRun time: " << fmt(r.wall_seconds, "%.1f") << " s";
+  if (!r.shards.empty()) {
+    md << ", in " << r.shards.size() << " shard" << (r.shards.size() == 1 ? "" : "s") << " (";
+    for (std::size_t k = 0; k < r.shards.size(); ++k) md << (k ? ", " : "") << r.shards[k];
+    md << "; their times added; a merged report's plots are in each shard's own report)";
+  }
+  md << ".\n";
   if (!notes.empty()) {
     md << "\n## Notes\n\n";
     for (const std::string& n : notes) md << "- " << n << '\n';

@@ -28,6 +28,20 @@ std::vector<PlotSpec> stability_plots(const StabilityResult& result);
 std::string stability_markdown(const StabilityResult& result, const std::vector<std::string>& plots,
                                const std::vector<std::string>& notes);
 
+// stability.md's "The checks and why": a row per check of every scene, its limit and the reason
+// the scene gives for it.
+std::string checks_markdown(const StabilityResult& result);
+
+// stability.json back into a result (`boxpile stability-merge`): each scene loaded again by
+// `load` from the file the report names; the cells' recorded series (the plots' data) are not in
+// the file and stay empty. Throws nlohmann::json's errors on a file of another shape.
+StabilityResult stability_from_json(const nlohmann::json& doc, const std::function<Scene(const std::string&)>& load);
+
+// The shards of one run (`--shard I/N`) as one result, cells in the run's order. Throws
+// std::invalid_argument naming the part (`names`, one per part) that is not a shard of the same
+// run as the first, a shard given twice, or a run left incomplete.
+StabilityResult merge_stability(const std::vector<StabilityResult>& parts, const std::vector<std::string>& names);
+
 // What a cell shows in the matrix: "pass" or "FAIL", with the deciding figure.
 std::string cell_text(const StabilityCell& cell);
 

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <map>
+#include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -310,9 +312,11 @@ int read_body_name(const JsonNode& node, const std::vector<BodyDesc>& bodies) {
 }
 
 RestCheck read_rest_check(const JsonNode& node) {
-  node.expect_object({"kinetic_per_body", "max_move"});
+  if (node.has("kinetic_per_body"))
+    node.at("kinetic_per_body").fail("is no longer a check: rest is judged by speed, \"speed\" (m/s)");
+  node.expect_object({"speed", "max_move"});
   RestCheck c;
-  if (const auto k = node.find("kinetic_per_body")) c.kinetic_per_body = json_input::read_positive(*k);
+  if (const auto k = node.find("speed")) c.speed = json_input::read_positive(*k);
   if (const auto m = node.find("max_move")) c.max_move = json_input::read_positive(*m);
   return c;
 }
@@ -363,9 +367,24 @@ std::vector<SideCheck> read_side_checks(const JsonNode& node, const std::vector<
   return checks;
 }
 
+// checks.reasons: a non-empty text per check the scene holds, keyed as the checks are.
+std::map<std::string, std::string> read_reasons(const JsonNode& node, const SceneChecks& checks) {
+  node.expect_object(std::span<const std::string_view>(kCheckKeys));
+  std::map<std::string, std::string> reasons;
+  for (const std::string_view key : kCheckKeys) {
+    const auto r = node.find(key);
+    if (!r) continue;
+    if (!has_check(checks, key)) r->fail("gives a reason for a check the scene does not hold");
+    std::string text = r->string();
+    if (text.empty()) r->fail("must not be empty");
+    reasons.emplace(std::string(key), std::move(text));
+  }
+  return reasons;
+}
+
 SceneChecks read_checks(const JsonNode& node, const std::vector<BodyDesc>& bodies) {
   node.expect_object({"energy_rise", "energy_conserved", "rest", "no_turning", "rebound", "slides",
-                      "stays_behind", "penetration"});
+                      "stays_behind", "penetration", "reasons"});
   SceneChecks c;
   if (const auto e = node.find("energy_rise")) c.energy_rise = json_input::read_positive(*e);
   if (const auto e = node.find("energy_conserved")) c.energy_conserved = json_input::read_positive(*e);
@@ -375,6 +394,7 @@ SceneChecks read_checks(const JsonNode& node, const std::vector<BodyDesc>& bodie
   if (const auto s = node.find("slides")) c.slides = read_slide_checks(*s, bodies);
   if (const auto s = node.find("stays_behind")) c.stays_behind = read_side_checks(*s, bodies);
   if (const auto p = node.find("penetration")) c.penetration = json_input::read_positive(*p);
+  if (const auto r = node.find("reasons")) c.reasons = read_reasons(*r, c);
   return c;
 }
 

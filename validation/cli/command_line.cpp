@@ -71,6 +71,9 @@ constexpr CommandExits kCommandExits[] = {
     {"stability", "0 our engine passed every check of every scene (other engines' failures are findings); 1 our "
                   "engine failed a check, or anything unexpected; 2 bad input (a scene, a flag, an engine name, the "
                   "report directory)"},
+    {"stability-merge", "0 the merged report was written (our engine's failures are in it, not in the exit code); 2 "
+                        "bad input (a shard report that is missing, broken, of another run or given twice; a shard "
+                        "missing; the report directory)"},
     {"conform", "0 the collider is within every gate; 1 it is not (conform.md says where); 2 bad input (a flag, "
                 "the cases, the report directory) or a collider that dies, hangs or answers what the protocol "
                 "does not allow"},
@@ -166,6 +169,7 @@ int run_command_line(int argc, const char* const* argv, CommandLineMode mode) {
     if (app.got_subcommand("sweep-merge")) return run_sweep_merge_command(sweep);
     if (app.got_subcommand("settings")) return run_settings_command();
     if (app.got_subcommand("stability")) return run_stability_command(stability);
+    if (app.got_subcommand("stability-merge")) return run_stability_merge_command(stability);
     if (app.got_subcommand("conform")) return run_conform_command(conform);
     if (app.got_subcommand("view")) return run_view(view);
     if (app.got_subcommand("scene")) return run_scene_command(scene);

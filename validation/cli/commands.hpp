@@ -141,9 +141,13 @@ struct StabilityOptions {
   bool tune = false;          // --tune
   double tune_budget = 60.0;  // --tune-budget, s per cell
   double cell_time_limit = 0.0;  // --cell-time-limit, s of stepping per cell (0: none)
+  std::string shard = "1/1";     // --shard I/N
+  std::vector<std::string> merge_inputs;  // stability-merge: the shards' report directories
 };
 void add_stability_command(CLI::App& app, StabilityOptions& options);
 int run_stability_command(const StabilityOptions& options);
+// `boxpile stability-merge DIR... [--out DIR]`: the shards of one stability run as one report.
+int run_stability_merge_command(const StabilityOptions& options);
 
 // `boxpile scene KIND [--base N] [--width N] [--height N] [--nx N] [--ny N] [--layers N] [--count N]
 // [--gap M] [--seed S] [--size M] [--mass KG] [--out FILE]`: a scene file of a pyramid, wall,

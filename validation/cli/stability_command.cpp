@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <iostream>
 
+#include "boxpile/sim/io/input_error.hpp"
+#include "boxpile/sim/io/json_input.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/validation/cli/activity.hpp"
 #include "boxpile/validation/cli/commands.hpp"
@@ -18,6 +20,8 @@
 
 namespace boxpile::cli {
 namespace {
+
+namespace fs = std::filesystem;
 
 std::string clock_text(double seconds) {
   const long s = std::lround(std::max(0.0, seconds));
@@ -83,8 +87,17 @@ void add_stability_command(CLI::App& app, StabilityOptions& options) {
                   "\"finished\" check, the rest of its checks judging the steps that ran")
       ->check(CLI::Range(0.0, 86400.0))
       ->capture_default_str();
+  cmd->add_option("--shard", options.shard,
+                  "Run shard I of N (I/N, 1-based): the cells whose position k (scene by scene, the engines in order "
+                  "within each) has k mod N = I-1; stability-merge joins the shards' reports")
+      ->capture_default_str();
   add_report_option(*cmd, options.report, "stability");
   add_limit_options(*cmd, options.limits, false);
+
+  CLI::App* merge = app.add_subcommand("stability-merge", "Merge the reports of a stability run's shards into one report");
+  merge->add_option("reports", options.merge_inputs, "Shard report directories (each holding stability.json)")->required();
+  merge->add_option("--out,--report", options.report, "Merged report directory (--report is the same)")->capture_default_str();
+  add_input_limit_option(*merge, options.limits.max_input_bytes);
 }
 
 int run_stability_command(const StabilityOptions& options) {
@@ -97,6 +110,11 @@ int run_stability_command(const StabilityOptions& options) {
   settings.tune_budget = options.tune_budget;
   settings.cell_time_limit = options.cell_time_limit;
   settings.max_steps = options.limits.max_steps;
+  try {
+    settings.shard = parse_shard(options.shard);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("command line", "--shard", e.what());
+  }
   std::vector<Scene> scenes;
   const std::vector<std::string> catalogue = catalogue_files({data_path("fixtures/hard").string()});
   const std::vector<std::string> files = options.scenes.empty() ? catalogue : catalogue_files(options.scenes);
@@ -131,6 +149,35 @@ int run_stability_command(const StabilityOptions& options) {
       kStabilityMarkdown);
   if (!result) return kExitInterrupted;
   return result->own_passed() ? kExitOk : kExitFailure;
+}
+
+int run_stability_merge_command(const StabilityOptions& options) {
+  // The merged report may be none of its inputs (it would replace one before it is read again).
+  std::vector<fs::path> input_files;
+  for (const std::string& in : options.merge_inputs) input_files.push_back(fs::path(in) / kStabilityJson);
+  ReportDirectory dir(options.report, input_files, kStabilityJson);
+  std::vector<StabilityResult> parts;
+  for (std::size_t k = 0; k < options.merge_inputs.size(); ++k) {
+    const std::string& in = options.merge_inputs[k];
+    const std::string path = input_files[k].string();
+    std::error_code ec;
+    if (!fs::is_regular_file(input_files[k], ec)) throw InputError(in, "", "no stability.json here: not a stability report");
+    const nlohmann::json doc =
+        json_input::parse(json_input::read_text_file(path, options.limits.max_input_bytes), path);
+    try {
+      parts.push_back(stability_from_json(doc, [&](const std::string& file) { return load_scene(file, options.limits.load()); }));
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(path, "", std::string("not a boxpile stability report: ") + e.what());
+    }
+  }
+  StabilityResult merged;
+  try {
+    merged = merge_stability(parts, options.merge_inputs);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("stability-merge", "", e.what());
+  }
+  report_to(dir, merged, write_stability_report, stability_summary, kStabilityMarkdown);
+  return kExitOk;
 }
 
 }  // namespace boxpile::cli
