@@ -12,7 +12,7 @@
 //                 with our per-stage profile as counters stage_*), a 4 x 4 x 4
 //                 cube of boxes rammed by a 40 kg box (2 s), and heaps of 300 and 1,000 randomly
 //                 sized and turned boxes falling in layers onto the ground (3 s), built in code
-//                 (generated_scenes.hpp).
+//                 (generated_scenes.hpp); ours also as own_threads_1 and own_threads_2 (solver.threads).
 //   step_scaling  square pyramids of base 4, 6, 8, 10, 14 and 20 (30 to 2,870 boxes), the first
 //                 60 steps (0.25 s): cost against the number of contacts, for the log-log plot
 //                 of docs/performance.md (scripts/plot-scaling).
@@ -154,8 +154,9 @@ void step_generated(benchmark::State& state, const Scene& scene, const std::stri
 
 // The scenes in motion, with our per-stage profile (9 clock reads a step, some 0.5 us: under 1%
 // of these steps).
-void step_profiled(benchmark::State& state, const Scene& scene, const std::string& engine, long steps) {
-  time_steps(state, scene, engine, nlohmann::json::object(), steps, true);
+void step_profiled(benchmark::State& state, const Scene& scene, const std::string& engine, long steps,
+                   const nlohmann::json& settings) {
+  time_steps(state, scene, engine, settings, steps, true);
 }
 
 long whole(const Scene& s) { return step_count(s.time); }
@@ -193,12 +194,20 @@ const bool registered = [] {
       {"heap_300", bench::falling_heap(300, 6, kHeapDuration)},
       {"heap_1000", bench::falling_heap(1000, 10, kHeapDuration)},
   };
-  for (const auto& [name, scene] : moving)
+  for (const auto& [name, scene] : moving) {
     for (const std::string& engine : kEngines)
       benchmark::RegisterBenchmark(("step_moving/" + name + "/" + engine).c_str(), step_profiled, scene, engine,
-                                   whole(scene))
+                                   whole(scene), nlohmann::json::object())
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
+    // Ours on one thread and on two (`own` above: every core of the machine).
+    for (const int threads : {1, 2})
+      benchmark::RegisterBenchmark(("step_moving/" + name + "/own_threads_" + std::to_string(threads)).c_str(),
+                                   step_profiled, scene, std::string("own"), whole(scene),
+                                   nlohmann::json{{"threads", threads}})
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
+  }
   // Each engine's colour (the registry's, as in every plot of boxpile's) in the results' context,
   // for scripts/plot-scaling.
   for (const std::string& engine : kEngines)

@@ -93,6 +93,10 @@ struct SolverSettings {
   double penetration_recovery = 0.2;  // per step, in [0, 1]
   double penetration_slop = 1e-4;     // m: overlaps this shallow are left alone
   int recovery_passes = 20;  // most per group of a phase (each shock level, then all contacts), fewer once converged
+  // Threads a step runs on, every method's (0: every core of the machine): the contact search's
+  // pairs and the impulse method's islands of touching bodies are shared among them. The result
+  // is the same to the bit whatever the number.
+  int threads = 0;
 };
 
 // Sets every addition of ours on (the "boxpile" variant: semi-implicit Euler, penetration recovery

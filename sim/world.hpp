@@ -3,6 +3,7 @@
 // contacts is a stage chosen by the scene's `solver.method` (sim/solver/contact_method.hpp).
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -18,6 +19,7 @@
 #include "boxpile/sim/solver/contact_method.hpp"
 #include "boxpile/sim/solver/step_context.hpp"
 #include "boxpile/sim/solver/wire.hpp"
+#include "boxpile/sim/thread_pool.hpp"
 
 namespace boxpile {
 
@@ -53,6 +55,8 @@ class World final : public Engine {
   const std::vector<CollisionEvent>& events() const { return events_; }
   const Scene& scene() const { return scene_; }
   const std::vector<WireJoint>& wires() const { return wires_; }
+  // How many threads a step runs on (solver.threads; 0 in the scene: every core).
+  int threads() const { return pool_.size(); }
 
  private:
   // The world's own stage: the contact set of a step of length dt, with speculative margins.
@@ -61,6 +65,13 @@ class World final : public Engine {
   void update_margins(double dt);
   void collide_body_pairs();
   void collide_ground();
+  // The contacts of every pair of `pairs` that the reuse will not copy, found on the pool's
+  // threads ahead of the search, each into its worker's list (found_, found_at_).
+  void find_pairs_ahead(const std::vector<std::pair<int, int>>& pairs);
+  // A pair's margin: the smaller of its two contact margins and both motions.
+  double pair_margin(int i, int j) const {
+    return margins_[i] + margins_[j] - std::max(base_margins_[i], base_margins_[j]);
+  }
 
   Scene scene_;
   std::string name_;
@@ -82,6 +93,15 @@ class World final : public Engine {
   std::vector<char> fixed_;              // per body, 1 when fixed, for the broadphase
   std::vector<CollisionEvent> events_;
   WorldCounters counters_;
+  ThreadPool pool_;  // solver.threads threads, the caller's included
+  // With more than one thread: per worker, the contacts it found ahead; per pair of the search,
+  // the worker and the range of its list that hold that pair's contacts (count -1: not found
+  // ahead, the reuse copies it).
+  struct FoundAt {
+    int worker = 0, first = 0, count = -1;
+  };
+  std::vector<std::vector<BodyContact>> found_;
+  std::vector<FoundAt> found_at_;
 };
 
 }  // namespace boxpile

@@ -46,9 +46,12 @@ TEST_CASE("the counter sees allocations", "[allocations]") {
   g_escape = nullptr;
 }
 
-TEST_CASE("1,000 steps of pile_100 allocate nothing", "[allocations]") {
-  const Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/pile_100.json");
+TEST_CASE("1,000 steps of pile_100 allocate nothing, on one thread and on two", "[allocations]") {
+  Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/pile_100.json");
+  const int threads = GENERATE(1, 2);
+  scene.solver.threads = threads;
   World world(scene);
+  REQUIRE(world.threads() == threads);
   constexpr int kSteps = 1000;
   const long before = g_allocations;
   for (int k = 0; k < kSteps; ++k) world.step();

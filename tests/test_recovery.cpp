@@ -34,6 +34,7 @@ struct Stack {
   ImpulseCounters impulses;
   ImpulseStepStats stats;
   std::vector<CollisionEvent> events;
+  ThreadPool pool{1};
   std::vector<SolverContact> contacts;
   SolverBodyArray resting;
   ShockPropagation shock;
@@ -79,7 +80,7 @@ struct Stack {
 
   // Shock propagation's levels, then recovery with or without skipping idle phases.
   void solve(bool skip_idle) {
-    StepContext ctx{scene, bodies, ground, found, same, wires, 0.0, kDt, counters, events};
+    StepContext ctx{scene, bodies, ground, found, same, wires, 0.0, kDt, counters, events, pool};
     ImpulseStep step{ctx, SolverBodies{bodies, ground}, resting, contacts, impulses, stats};
     shock.run(step);
     recovery.skip_idle_phases(skip_idle);
@@ -161,7 +162,7 @@ TEST_CASE("shock propagation on the last run's contact set keeps its levels and 
     }
   };
   auto run = [](Stack& s, bool same_contacts) {
-    StepContext ctx{s.scene, s.bodies, s.ground, s.found, s.same, s.wires, 0.0, kDt, s.counters, s.events};
+    StepContext ctx{s.scene, s.bodies, s.ground, s.found, s.same, s.wires, 0.0, kDt, s.counters, s.events, s.pool};
     ImpulseStep step{ctx, SolverBodies{s.bodies, s.ground}, s.resting, s.contacts, s.impulses, s.stats};
     s.shock.run(step, same_contacts);
   };

@@ -42,6 +42,14 @@ class ContactReuse {
   // Pairs must be asked in the order of the search.
   template <class Find>
   void pair(int a, int b, double margin, std::vector<BodyContact>& out, Find&& find);
+  // Whether the pair (a, b), asked `place`-th in this step's search (counting from 0), will be
+  // copied by pair(): what pair() decides, known ahead, so that the pairs it will not copy can be
+  // found beforehand (on several threads).
+  bool copies(int a, int b, double margin, std::size_t place) const {
+    const Pair* last = enabled_ ? last_step_pair(a, b, place) : nullptr;
+    return last != nullptr && last->stamp_a == stamp(a) && last->stamp_b == stamp(b) &&
+           std::abs(last->margin - margin) <= kPoseTolerance;
+  }
 
   // Per contact of this step's set: 1 when it is last step's contact at the same index, found at
   // poses within the tolerance of both bodies' present ones.
@@ -87,9 +95,8 @@ class ContactReuse {
 template <class Find>
 void ContactReuse::pair(int a, int b, double margin, std::vector<BodyContact>& out, Find&& find) {
   const int first = static_cast<int>(out.size());
-  const Pair* last = enabled_ ? last_step_pair(a, b, cursor_++) : nullptr;
-  const bool same_pair = last != nullptr && last->stamp_a == stamp(a) && last->stamp_b == stamp(b) &&
-                         std::abs(last->margin - margin) <= kPoseTolerance;
+  const Pair* last = enabled_ ? last_step_pair(a, b, cursor_) : nullptr;
+  const bool same_pair = copies(a, b, margin, cursor_++);
   Pair p{a, b, stamp(a), stamp(b), margin, first, 0};
   if (same_pair) {
     const auto from = last_contacts_.begin() + last->first;

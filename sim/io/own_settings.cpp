@@ -1,6 +1,7 @@
 #include "boxpile/sim/io/own_settings.hpp"
 
 #include "boxpile/sim/limits.hpp"
+#include "boxpile/sim/thread_pool.hpp"
 #include "boxpile/sim/solver/contact_method.hpp"
 
 namespace boxpile {
@@ -20,6 +21,12 @@ std::vector<Setting<Scene>> shared_rows(std::string_view section) {
         .scene_key = "solver.contact_margin"},
        [](S& s, const json& v) { s.solver.contact_margin = v.get<double>(); },
        [](const S& s) { return json(s.solver.contact_margin); }},
+      {{.key = "threads", .kind = Kind::Integer,
+        .what = "threads a step runs on: the contact search's pairs and the impulse method's islands of touching "
+                "bodies shared among them (0: every core); the result is the same to the bit for any number",
+        .min = 0, .max = kMaxThreads, .scene_key = "solver.threads"},
+       [](S& s, const json& v) { s.solver.threads = v.get<int>(); },
+       [](const S& s) { return json(s.solver.threads); }},
   };
   return {
       // Contact generation, shared by every method (the scene's `collision` object).

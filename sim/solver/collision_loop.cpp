@@ -17,7 +17,7 @@ constexpr double kCollisionSpeedMin = 1e-6;
 // One event per pair and step with an approach faster than `event_speed` before the loop's first
 // impulse (later passes see a body already turned by other points' impulses), with the pair's
 // summed impulse. Contacts of a pair are consecutive.
-void record_events(const std::vector<SolverContact>& contacts, double time, double event_speed,
+void record_events(std::span<const SolverContact> contacts, double time, double event_speed,
                    std::vector<CollisionEvent>& events) {
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const SolverContact& c = contacts[k];
@@ -33,7 +33,7 @@ void record_events(const std::vector<SolverContact>& contacts, double time, doub
 
 // The lab text's pass: each active point in turn takes the Newton-Coulomb impulse of its present
 // approach (push-only), the bodies' velocities updated at once. Returns whether a point was active.
-bool sequential_pass(SolverBodies& sb, std::vector<SolverContact>& contacts, bool restitution, bool friction,
+bool sequential_pass(SolverBodies& sb, std::span<SolverContact> contacts, bool restitution, bool friction,
                      double dt, ImpulseCounters& counters) {
   bool any_active = false;
   for (SolverContact& c : contacts) {
@@ -50,7 +50,7 @@ bool sequential_pass(SolverBodies& sb, std::vector<SolverContact>& contacts, boo
 
 // Our pass: each pair's points solved together (pair_impulse.hpp), so that a face landing flat
 // stays flat. The points of one pair are consecutive in the contact set.
-bool pair_pass(SolverBodies& sb, std::vector<SolverContact>& contacts, bool restitution, bool friction,
+bool pair_pass(SolverBodies& sb, std::span<SolverContact> contacts, bool restitution, bool friction,
                ImpulseCounters& counters) {
   bool any_active = false;
   for (std::size_t first = 0; first < contacts.size();) {
@@ -69,19 +69,15 @@ bool pair_pass(SolverBodies& sb, std::vector<SolverContact>& contacts, bool rest
 
 }  // namespace
 
-void collision_loop(ImpulseStep& step) {
+void collision_loop(ImpulseStep& step, std::span<SolverContact> contacts) {
   SolverBodies& sb = step.sb;
-  std::vector<SolverContact>& contacts = step.contacts;
   const Scene& scene = step.world.scene;
   const int passes = scene.solver.collision_passes;
   const bool restitution = scene.effects.restitution;
   const bool friction = scene.effects.friction;
-  const double time = step.world.time;
   const double dt = step.world.dt;
-  const double event_speed = collision_event_speed(scene, dt);
   ImpulseCounters& counters = step.counters();
   ImpulseStepStats& stats = step.stats();
-  std::vector<CollisionEvent>& events = step.world.events;
   assert(passes <= kMaxSolverPasses);
   const bool together = scene.solver.pair_impulses;
   // A point still apart collides in this step only if it would close its gap within the step;
@@ -107,10 +103,15 @@ void collision_loop(ImpulseStep& step) {
       if (approach <= 0.0) c.active = false;
       residual = std::max(residual, approach);
     }
-    stats.collision_residual[pass] = residual;
-    stats.collision_passes_used = pass + 1;
+    // Islands run apart: the step's residual after a pass is the largest of theirs.
+    stats.collision_residual[pass] = std::max(stats.collision_residual[pass], residual);
+    stats.collision_passes_used = std::max(stats.collision_passes_used, pass + 1);
   }
-  record_events(contacts, time, event_speed, events);
+}
+
+void record_collision_events(ImpulseStep& step) {
+  const double dt = step.world.dt;
+  record_events(step.contacts, step.world.time, collision_event_speed(step.world.scene, dt), step.world.events);
 }
 
 }  // namespace boxpile

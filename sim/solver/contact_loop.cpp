@@ -5,14 +5,13 @@
 
 namespace boxpile {
 
-void contact_loop(ImpulseStep& step) {
+void contact_loop(ImpulseStep& step, std::span<SolverContact> contacts) {
   SolverBodyArray& sb = step.resting;
-  sb.gather(step.sb.bodies);
   const int passes = step.settings().contact_passes;
   const double dt = step.dt();
   const bool accumulated = step.settings().accumulated_impulses;
   assert(passes <= kMaxSolverPasses);
-  for (SolverContact& c : step.contacts) begin_resting_phase(c, sb.relative_velocity(c));
+  for (SolverContact& c : contacts) begin_resting_phase(c, sb.relative_velocity(c));
   for (int pass = 0; pass < passes; ++pass) {
     // e = -1 would leave velocities unchanged; the ramp starts one step above it and ends at 0,
     // slowing resting contacts gradually instead of stopping the first one met at full force.
@@ -21,7 +20,7 @@ void contact_loop(ImpulseStep& step) {
     // The residual of a pass is the largest approach met in it, each contact measured just
     // before its impulse (free: the velocity is needed anyway).
     double residual = 0.0;
-    for (SolverContact& c : step.contacts) {
+    for (SolverContact& c : contacts) {
       const Vec3 u = sb.relative_velocity(c);
       residual = std::max(residual, allow_gap(c, 0.0, dt) - c.n.dot(u));
       // Ours asks u_n >= -e_k u_n(start) of the impulse accumulated over the phase; the lab
@@ -33,10 +32,10 @@ void contact_loop(ImpulseStep& step) {
                                  : push_impulse(c, u, target, step.friction(), step.counters());
       if (!is_exact_zero(j)) sb.apply(c, j);  // a zero impulse would leave every velocity as it is
     }
-    step.stats().contact_residual[pass] = residual;
+    // Islands run apart: the step's residual after a pass is the largest of theirs.
+    step.stats().contact_residual[pass] = std::max(step.stats().contact_residual[pass], residual);
     step.stats().contact_passes_used = pass + 1;
   }
-  sb.scatter(step.sb.bodies);
 }
 
 }  // namespace boxpile

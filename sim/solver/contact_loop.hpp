@@ -1,14 +1,17 @@
 // The contact loop of the Guendelman-Bridson-Fedkiw step (sec. 6 of the paper).
 #pragma once
 
+#include <span>
+
 #include "boxpile/sim/solver/impulse_step.hpp"
 
 namespace boxpile {
 
-// Contact loop: `contact_passes` passes over every contact of the step's set, restitution ramped
-// e_k = -1 + (k + 1) / passes (from -1 + 1/n up to 0), nothing removed. With
+// Contact loop: `contact_passes` passes over `contacts` (the step's set, or an island of it),
+// restitution ramped e_k = -1 + (k + 1) / passes (from -1 + 1/n up to 0), nothing removed. With
 // accumulated_impulses a projected Gauss-Seidel over the phase's impulses; without, the lab
-// text's push-only Newton-Coulomb impulses.
-void contact_loop(ImpulseStep& step);
+// text's push-only Newton-Coulomb impulses. Works on the compact bodies (step.resting), gathered
+// before and scattered after by the caller.
+void contact_loop(ImpulseStep& step, std::span<SolverContact> contacts);
 
 }  // namespace boxpile

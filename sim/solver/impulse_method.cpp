@@ -1,12 +1,14 @@
 #include "boxpile/sim/solver/impulse_method.hpp"
 
 #include <algorithm>
+#include <cassert>
 
 #include "boxpile/sim/solver/collision_loop.hpp"
 #include "boxpile/sim/solver/contact_loop.hpp"
 #include "boxpile/sim/solver/integrate.hpp"
 #include "boxpile/sim/io/own_settings.hpp"
 #include "boxpile/sim/limits.hpp"
+#include "boxpile/sim/thread_pool.hpp"
 
 namespace boxpile {
 
@@ -35,9 +37,52 @@ ImpulseMethod::ImpulseMethod(const Scene& scene, std::size_t body_count)
   const StepStorage storage{body_count};
   solver_contacts_.reserve(storage.contacts());
   prepared_k_.reserve(storage.contacts());
+  islands_.reserve(body_count, storage.contacts());
+  last_order_.reserve(storage.contacts());
   resting_bodies_.reserve(body_count);
   shock_.reserve(storage);
   recovery_.reserve(storage);
+  // One per thread of the world's pool, which has resolve_threads(solver.threads).
+  workers_.resize(static_cast<std::size_t>(resolve_threads(scene.solver.threads)));
+  for (Worker& w : workers_) {
+    w.shock.active.reserve(body_count);
+    w.recovery.reserve(storage);
+  }
+}
+
+template <class Stage>
+void ImpulseMethod::for_each_island(StepContext& ctx, Stage&& stage) {
+  assert(static_cast<std::size_t>(ctx.pool.size()) <= workers_.size());
+  ctx.pool.run(islands_.count(), [&](int item, int w) {
+    const int island = islands_.by_size()[static_cast<std::size_t>(item)];
+    Worker& worker = workers_[static_cast<std::size_t>(w)];
+    ImpulseStep step{ctx, SolverBodies{ctx.bodies, ctx.ground}, resting_bodies_, solver_contacts_, worker.counters,
+                     worker.stats};
+    stage(step, islands_.begin(island), islands_.end(island), worker);
+  });
+}
+
+void ImpulseMethod::merge_workers() {
+  ImpulseStepStats& st = stats_;
+  for (Worker& w : workers_) {
+    counters_.impulses.normal_impulses += w.counters.normal_impulses;
+    counters_.impulses.friction_evaluations += w.counters.friction_evaluations;
+    counters_.impulses.sliding += w.counters.sliding;
+    const ImpulseStepStats& ws = w.stats;
+    st.collision_passes_used = std::max(st.collision_passes_used, ws.collision_passes_used);
+    st.contact_passes_used = std::max(st.contact_passes_used, ws.contact_passes_used);
+    for (int k = 0; k < kMaxSolverPasses; ++k) {
+      st.collision_residual[k] = std::max(st.collision_residual[k], ws.collision_residual[k]);
+      st.contact_residual[k] = std::max(st.contact_residual[k], ws.contact_residual[k]);
+      st.shock_change[k] = std::max(st.shock_change[k], ws.shock_change[k]);
+    }
+    st.shock_pass_count = std::max(st.shock_pass_count, ws.shock_pass_count);
+    st.shock_passes_used += ws.shock_passes_used;
+    st.shock_parts += ws.shock_parts;
+    st.shock_stalled_levels += ws.shock_stalled_levels;
+    w.counters = ImpulseCounters{};
+    w.stats = ImpulseStepStats{};
+  }
 }
 
 void ImpulseMethod::step(StepContext& ctx) {
@@ -48,16 +93,21 @@ void ImpulseMethod::step(StepContext& ctx) {
     start_omega_[i] = bodies[i].omega;
   }
 
-  // 1. The contact set (found by the world), as the solver sees it through the whole step.
+  // 1. The contact set (found by the world), as the solver sees it through the whole step, island
+  // by island: each stage below runs over the islands, on the pool's threads.
   prepare_solver_contacts(ctx);
   if (same_set_) ++counters_.same_contact_sets;
   StepProfile& profile = ctx.counters.profile;
   profile.lap(Stage::prepare);
   stats_ = ImpulseStepStats{};
   ImpulseStep step{ctx, SolverBodies{bodies, ctx.ground}, resting_bodies_, solver_contacts_, counters_.impulses, stats_};
+  const auto contacts_of = [&](ImpulseStep& is, int begin, int end) {
+    return std::span<SolverContact>(is.contacts.data() + begin, static_cast<std::size_t>(end - begin));
+  };
 
   // 2. Collision loop: resolve approaching contacts with the scene's restitution.
-  collision_loop(step);
+  for_each_island(ctx, [&](ImpulseStep& is, int begin, int end, Worker&) { collision_loop(is, contacts_of(is, begin, end)); });
+  record_collision_events(step);
   ++counters_.collision_loop_runs;
   profile.lap(Stage::collision_loop);
 
@@ -67,14 +117,20 @@ void ImpulseMethod::step(StepContext& ctx) {
   profile.lap(Stage::forces);
 
   // 4. Contact loop: every contact of the set, restitution ramped up to 0.
-  contact_loop(step);
+  resting_bodies_.gather(bodies);
+  for_each_island(ctx, [&](ImpulseStep& is, int begin, int end, Worker&) { contact_loop(is, contacts_of(is, begin, end)); });
+  resting_bodies_.scatter(bodies);
   ++counters_.contact_loop_runs;
   enforce_wires(bodies, ctx.wires);
   profile.lap(Stage::contact_loop);
 
   // 5. Shock propagation: from the ground up, each level frozen once solved.
   if (s.shock_propagation) {
-    shock_.run(step, same_set_);
+    shock_.prepare(step, same_set_);
+    resting_bodies_.gather(bodies);
+    for_each_island(ctx, [&](ImpulseStep& is, int begin, int end, Worker& w) { shock_.solve_island(is, begin, end, w.shock); });
+    resting_bodies_.scatter(bodies);
+    stats_.residual_after_shock = approach_residual(step.sb, solver_contacts_, ctx.dt);
     ++counters_.shock_propagation_runs;
   }
   enforce_wires(bodies, ctx.wires);
@@ -82,9 +138,14 @@ void ImpulseMethod::step(StepContext& ctx) {
 
   // Penetration recovery: pseudo-velocities that push overlaps apart (positions only).
   if (s.penetration_recovery > 0.0) {
-    recovery_.run(step, s.shock_propagation ? &shock_ : nullptr);
+    const ShockPropagation* levels = s.shock_propagation ? &shock_ : nullptr;
+    if (recovery_.prepare(step))
+      for_each_island(ctx, [&](ImpulseStep& is, int begin, int end, Worker& w) {
+        recovery_.solve_island(is, levels, begin, end, w.recovery);
+      });
     ++counters_.recovery_runs;
   }
+  merge_workers();
   profile.lap(Stage::recovery);
 
   // 6. Positions and orientations; wired anchors back onto their wires.
@@ -97,19 +158,24 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
   // Last step's solver contacts stay in place: a contact the world kept from the last step at the
   // same index keeps its offsets and collision matrices (its bodies have not moved beyond
   // rounding since they were formed) and only takes back its K over both bodies.
+  // The contacts are taken island by island (islands.hpp); a contact kept from the last step is
+  // at its last place when the islands before it are the same too.
+  islands_.find(ctx.contacts, ctx.bodies);
+  const std::vector<int>& order = islands_.order();
   const std::size_t count = ctx.contacts.size();
-  const std::size_t kept = std::min(solver_contacts_.size(), count);
+  const std::size_t kept = std::min(last_order_.size(), count);
   same_set_ = count > 0 && count == solver_contacts_.size();
   solver_contacts_.resize(count);
   prepared_k_.resize(count);
   // A pair's contacts come one after another: its slop and material are found once per pair.
   PairTerms pair;
-  for (std::size_t k = 0; k < count; ++k) {
-    SolverContact& c = solver_contacts_[k];
-    const bool same = k < kept && ctx.same_as_last_step[k];
+  for (std::size_t p = 0; p < count; ++p) {
+    SolverContact& c = solver_contacts_[p];
+    const std::size_t k = static_cast<std::size_t>(order[p]);
+    const bool same = p < kept && last_order_[p] == order[p] && ctx.same_as_last_step[k];
     same_set_ = same_set_ && same;
     if (same) {
-      const CollisionMatrix& m = prepared_k_[k];
+      const CollisionMatrix& m = prepared_k_[p];
       c.K = m.K;
       c.Kinv = m.Kinv;
       c.Kinv_n = m.Kinv_n;
@@ -140,8 +206,9 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
     c.Ka = Ka;
     c.Kb = Kb;
     set_collision_matrix(c, Ka + Kb);
-    prepared_k_[k] = {c.K, c.Kinv, c.Kinv_n, c.Kinv_n_size};
+    prepared_k_[p] = {c.K, c.Kinv, c.Kinv_n, c.Kinv_n_size};
   }
+  last_order_.assign(order.begin(), order.end());
 }
 
 void ImpulseMethod::integrate_positions(StepContext& ctx) {

@@ -8,6 +8,7 @@
 #include "boxpile/sim/solver/contact_method.hpp"
 #include "boxpile/sim/solver/impulse.hpp"
 #include "boxpile/sim/solver/impulse_step.hpp"
+#include "boxpile/sim/solver/islands.hpp"
 #include "boxpile/sim/solver/recovery.hpp"
 #include "boxpile/sim/solver/shock_propagation.hpp"
 #include "boxpile/sim/solver/solver_body.hpp"
@@ -40,11 +41,31 @@ class ImpulseMethod final : public ContactMethod {
   void prepare_solver_contacts(const StepContext& ctx);
   void integrate_positions(StepContext& ctx);
 
+  // What one worker of the pool keeps for itself through a step: its counts and records (added to
+  // the step's once every island is solved) and the stages' scratch.
+  struct Worker {
+    ImpulseCounters counters;
+    ImpulseStepStats stats;
+    ShockPropagation::Worker shock;
+    PenetrationRecovery::Worker recovery;
+  };
+  // Runs stage(step, begin, end, worker) for every island [begin, end) of the contact set, on the
+  // pool's threads; `step` is the worker's view of the step (its own counts and records).
+  template <class Stage>
+  void for_each_island(StepContext& ctx, Stage&& stage);
+  // The workers' counts and records, added into the method's and the step's (sums and maxima:
+  // the same whichever worker solved which island).
+  void merge_workers();
+
   ImpulseMethodCounters counters_;
   ImpulseStepStats stats_;   // of the last step
   bool speculative_ = true;  // solver.speculative_contacts
   bool reuse_ = true;        // collision.reuse_contacts
+  // The step's contacts island by island (islands_.order(): the world's index of each), and last
+  // step's order, so that a contact kept from the last step is known to be at the same place.
   std::vector<SolverContact> solver_contacts_;
+  Islands islands_;
+  std::vector<int> last_order_;
   // Per solver contact, its collision matrix over both bodies as prepared: shock propagation leaves
   // some contacts with a moving body's share alone, and a contact kept from the last step
   // (StepContext::same_as_last_step) takes this one back instead of inverting K again.
@@ -60,6 +81,7 @@ class ImpulseMethod final : public ContactMethod {
   ShockPropagation shock_;
   PenetrationRecovery recovery_;
   std::vector<Vec3> start_v_, start_omega_;  // velocities at the step's start (explicit Euler)
+  std::vector<Worker> workers_;  // one per thread of the world's pool (StepContext::pool)
 };
 
 }  // namespace boxpile

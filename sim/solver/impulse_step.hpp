@@ -51,14 +51,15 @@ struct ImpulseStepStats {
   std::array<double, kMaxSolverPasses> contact_residual{};
   int contact_passes_used = 0;
   int shock_levels = 0;
-  int shock_passes_used = 0;  // summed over the levels (a level's direct solves count as one)
+  int shock_passes_used = 0;  // summed over the levels' islands (a part's direct solves count as one)
+  int shock_parts = 0;        // (island, level) parts solved: each island's share of a level, solved apart
   // Largest velocity change |K dj| an impulse made in each shock-propagation pass, over the
   // levels (a level stops once it is below kRestingConverged), m/s; shock_pass_count passes are
   // recorded. A level's direct solves of sticking groups count as its first pass, with their
   // largest residual as its change.
   std::array<double, kMaxSolverPasses> shock_change{};
   int shock_pass_count = 0;  // the most passes any level used
-  // Levels in which a group (or the level as a whole) stopped because its passes no longer converged.
+  // Parts (an island's share of a level) whose passes stopped because they no longer converged.
   int shock_stalled_levels = 0;
   double residual_after_shock = 0.0;
 };

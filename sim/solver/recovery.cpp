@@ -42,12 +42,20 @@ void PenetrationRecovery::reserve(const StepStorage& storage) {
   normal_mass_.reserve(storage.contacts());
   target_.reserve(storage.contacts());
   all_.reserve(storage.contacts());
-  phase_.reserve(storage.contacts());
-  grouped_.reserve(storage.contacts());
-  groups_.reserve(storage.bodies, storage.contacts());
+  own_.reserve(storage);
+}
+
+void PenetrationRecovery::Worker::reserve(const StepStorage& storage) {
+  phase.reserve(storage.contacts());
+  grouped.reserve(storage.contacts());
+  groups.reserve(storage.bodies, storage.contacts());
 }
 
 void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* shock) {
+  if (prepare(step)) solve_island(step, shock, 0, static_cast<int>(step.contacts.size()), own_);
+}
+
+bool PenetrationRecovery::prepare(const ImpulseStep& step) {
   const SolverBodies& sb = step.sb;
   const std::vector<SolverContact>& contacts = step.contacts;
   const double beta = step.settings().penetration_recovery;
@@ -56,7 +64,7 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
   pseudo_omega_.assign(n, Vec3::Zero());
   pushed_.assign(n, 0);
   lambda_.assign(contacts.size(), 0.0);
-  skipped_phases_ = 0;
+  own_.skipped_phases = 0;
   target_.resize(contacts.size());
   all_.clear();
   bool any_push = false;
@@ -65,9 +73,19 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
     any_push = any_push || target_[k] > 0.0;
     all_.push_back(static_cast<int>(k));
   }
-  if (!any_push) return;  // nothing overlaps beyond the slop or approaches: no pseudo-velocity
+  if (!any_push) return false;  // nothing overlaps beyond the slop or approaches: no pseudo-velocity
   normal_mass_.assign(contacts.size(), kNormalMassUnset);
+  return true;
+}
 
+void PenetrationRecovery::solve_island(const ImpulseStep& step, const ShockPropagation* shock, int begin, int end,
+                                       Worker& worker) {
+  // The island's contacts among a list of contact indices in increasing order.
+  auto within = [&](std::span<const int> list) {
+    const auto first = std::lower_bound(list.begin(), list.end(), begin);
+    const auto last = std::lower_bound(first, list.end(), end);
+    return list.subspan(static_cast<std::size_t>(first - list.begin()), static_cast<std::size_t>(last - first));
+  };
   // With shock propagation's levels, first each level from the ground up with the lower ones
   // frozen, as the velocities were: a body on top cannot push the bodies under it into the
   // ground, and a lower body the velocity stages left driving into the one above it moves that
@@ -76,26 +94,30 @@ void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* s
   // height, and a frozen lower level may hold what the level above it must push (with the levels
   // alone, a pair of `pile_100` sank 5 cm over 80 steps).
   if (shock)
-    for (int l = 0; l <= shock->top_level(); ++l) solve_phase(step, shock->contacts_of_level(l), shock, l);
-  solve_phase(step, all_, nullptr, 0);
+    for (int l = 0; l <= shock->top_level(); ++l) solve_phase(step, within(shock->contacts_of_level(l)), shock, l, worker);
+  solve_phase(step, within(all_), nullptr, 0, worker);
 }
 
 void PenetrationRecovery::solve_phase(const ImpulseStep& step, std::span<const int> contacts,
-                                      const ShockPropagation* shock, int level) {
+                                      const ShockPropagation* shock, int level, Worker& worker) {
   // A phase none of whose contacts may change would skip every contact in its first pass and stop
   // there: it is skipped whole (most often a low level of a pile, left as the velocities had it).
   const auto can_change = [&](int k) { return may_change(k, step.contacts[k].a, step.contacts[k].b); };
   if (skip_idle_phases_ && std::none_of(contacts.begin(), contacts.end(), can_change)) {
-    ++skipped_phases_;
+    ++worker.skipped_phases;
     return;
   }
-  collect_phase(step, contacts, shock, level);
-  group_phase(step.sb.bodies.size());
-  for (int g = 0; g < groups_.count(); ++g) solve_group(step, groups_.group(grouped_, g), shock != nullptr);
+  collect_phase(step, contacts, shock, level, worker.phase);
+  // A contact moves the body it pushes that is not frozen; one between two of them links their
+  // groups.
+  auto moving = [](const PhaseContact& pc) { return MovingBodies::of(pc.a, pc.b, pc.a_moves, pc.b_moves); };
+  worker.groups.sort(std::span<const PhaseContact>(worker.phase), step.sb.bodies.size(), moving, worker.grouped);
+  for (int g = 0; g < worker.groups.count(); ++g)
+    solve_group(step, worker.groups.group(worker.grouped, g), shock != nullptr);
 }
 
 void PenetrationRecovery::collect_phase(const ImpulseStep& step, std::span<const int> contacts,
-                                        const ShockPropagation* shock, int level) {
+                                        const ShockPropagation* shock, int level, std::vector<PhaseContact>& phase_) {
   const SolverBodies& sb = step.sb;
   // With the levels, the level's own bodies (shock propagation's rule); without, every body
   // that is not fixed.
@@ -118,13 +140,6 @@ double PenetrationRecovery::normal_mass(const std::vector<SolverContact>& contac
   if (std::isnan(cached))
     cached = a_moves && b_moves ? c.n.dot((c.Ka + c.Kb) * c.n) : c.n.dot((a_moves ? c.Ka : c.Kb) * c.n);
   return cached;
-}
-
-void PenetrationRecovery::group_phase(std::size_t bodies) {
-  // A contact moves the body it pushes that is not frozen; one between two of them links their
-  // groups.
-  auto moving = [](const PhaseContact& pc) { return MovingBodies::of(pc.a, pc.b, pc.a_moves, pc.b_moves); };
-  groups_.sort(std::span<const PhaseContact>(phase_), bodies, moving, grouped_);
 }
 
 void PenetrationRecovery::solve_group(const ImpulseStep& step, std::span<const PhaseContact> group, bool stop_stalled) {

@@ -31,17 +31,6 @@ class PenetrationRecovery {
   // the phase with every body movable takes it up). Fills pseudo_v and pseudo_omega (per body).
   void run(const ImpulseStep& step, const ShockPropagation* shock);
 
-  const std::vector<Vec3>& pseudo_v() const { return pseudo_v_; }
-  const std::vector<Vec3>& pseudo_omega() const { return pseudo_omega_; }
-  // Phases of the last run skipped whole because none of their contacts could change, and whether
-  // such phases are skipped (the default; off, they run their first pass, which changes nothing:
-  // the tests compare the two).
-  int skipped_phases() const { return skipped_phases_; }
-  void skip_idle_phases(bool on) { skip_idle_phases_ = on; }
-
- private:
-  // The separating pseudo-velocity contact `c` asks for, m/s (see the .cpp).
-  static double pseudo_target(const SolverBodies& sb, const SolverContact& c, double beta, double dt);
   // A contact of the phase being solved, with what its passes read.
   struct PhaseContact {
     int index = 0;  // in step.contacts
@@ -50,7 +39,32 @@ class PenetrationRecovery {
     double inv_k_nn = 0.0;  // 1 / (n . K n) over the bodies that move
     double change_scale = 0.0;  // (n . K n) dt / slop: |change| times it is the pass's change term
   };
+  // What a worker keeps for itself while it solves an island: the phase's contacts and groups.
+  struct Worker {
+    void reserve(const StepStorage& storage);
+    std::vector<PhaseContact> phase;
+    std::vector<PhaseContact> grouped;  // phase by group
+    BodyGroups groups;                  // the phase's groups
+    int skipped_phases = 0;
+  };
+  // A run in parts: `prepare` sets every contact's target and clears the pseudo-velocities (false:
+  // no contact asks for a push, and nothing is left to solve), then `solve_island` solves the
+  // contacts [begin, end) of the set, an island (islands.hpp), phase after phase. Islands share no
+  // moving body, so they may be solved at once on several threads, each with a worker of its own.
+  bool prepare(const ImpulseStep& step);
+  void solve_island(const ImpulseStep& step, const ShockPropagation* shock, int begin, int end, Worker& worker);
 
+  const std::vector<Vec3>& pseudo_v() const { return pseudo_v_; }
+  const std::vector<Vec3>& pseudo_omega() const { return pseudo_omega_; }
+  // Phases of the last run skipped whole because none of their contacts could change, and whether
+  // such phases are skipped (the default; off, they run their first pass, which changes nothing:
+  // the tests compare the two).
+  int skipped_phases() const { return own_.skipped_phases; }
+  void skip_idle_phases(bool on) { skip_idle_phases_ = on; }
+
+ private:
+  // The separating pseudo-velocity contact `c` asks for, m/s (see the .cpp).
+  static double pseudo_target(const SolverBodies& sb, const SolverContact& c, double beta, double dt);
   // Whether contact k (between bodies a and b) may change in a pass: it asks for a push, has one,
   // or a body of it has been pushed. One that may not would stay at zero.
   bool may_change(int k, int a, int b) const {
@@ -62,11 +76,11 @@ class PenetrationRecovery {
 
   // One phase: `contacts` with bodies below `level` frozen (none without `shock`), solved as groups
   // that share no moving body, each by its passes until it converges.
-  void solve_phase(const ImpulseStep& step, std::span<const int> contacts, const ShockPropagation* shock, int level);
-  // The phase's contacts with which of their bodies move (phase_).
-  void collect_phase(const ImpulseStep& step, std::span<const int> contacts, const ShockPropagation* shock, int level);
-  // phase_ sorted into groups that share no moving body (grouped_, groups_).
-  void group_phase(std::size_t bodies);
+  void solve_phase(const ImpulseStep& step, std::span<const int> contacts, const ShockPropagation* shock, int level,
+                   Worker& worker);
+  // The phase's contacts with which of their bodies move.
+  void collect_phase(const ImpulseStep& step, std::span<const int> contacts, const ShockPropagation* shock, int level,
+                     std::vector<PhaseContact>& phase);
   // The passes over one group, until it converges, `recovery_passes` have run, or (with
   // `stop_stalled`) it stalls: kRecoveryStallPasses passes in a row without progress.
   void solve_group(const ImpulseStep& step, std::span<const PhaseContact> group, bool stop_stalled);
@@ -81,12 +95,9 @@ class PenetrationRecovery {
   static constexpr std::array<double, 3> kNormalMassUnset = {std::numeric_limits<double>::quiet_NaN(),
                                                              std::numeric_limits<double>::quiet_NaN(),
                                                              std::numeric_limits<double>::quiet_NaN()};
-  int skipped_phases_ = 0;
   bool skip_idle_phases_ = true;
-  std::vector<int> all_;        // every contact of the step
-  std::vector<PhaseContact> phase_;
-  std::vector<PhaseContact> grouped_;  // phase_ by group
-  BodyGroups groups_;                  // the phase's groups
+  std::vector<int> all_;  // every contact of the step
+  Worker own_;            // run's worker
 };
 
 }  // namespace boxpile

@@ -121,25 +121,49 @@ void ShockPropagation::reserve(const StepStorage& storage) {
   grouped_.reserve(storage.contacts());
   group_start_.reserve(storage.contacts() + 1);
   level_group_.reserve(storage.bodies + 2);
-  active_.reserve(storage.bodies);
+  own_.active.reserve(storage.bodies);
 }
 
 void ShockPropagation::run(ImpulseStep& step, bool same_contacts) {
+  prepare(step, same_contacts);
+  step.resting.gather(step.sb.bodies);
+  solve_island(step, 0, static_cast<int>(step.contacts.size()), own_);
+  step.resting.scatter(step.sb.bodies);
+  step.stats().residual_after_shock = approach_residual(step.sb, step.contacts, step.dt());
+}
+
+void ShockPropagation::prepare(ImpulseStep& step, bool same_contacts) {
   if (!same_contacts) {
     build_graph(step);
     assign_levels(step);
     group_contacts_by_level(step);
+    // Every level's groups, from which bodies belong to it alone: its targets, which read the
+    // frozen bodies' velocities, are set when the level is solved.
     grouped_.clear();
     group_start_.assign(1, 0);
     level_group_.assign(1, 0);
+    for (int l = 0; l <= top_; ++l) group_level(step, l);
   }
-  // Solve level by level with e = 0; bodies below the level are frozen (infinite mass), so
-  // nothing pushes back down the pile and the stack's weight is carried by the ground.
-  step.resting.gather(step.sb.bodies);
-  for (int l = 0; l <= top_; ++l) solve_level(step, l, same_contacts);
-  step.resting.scatter(step.sb.bodies);
   step.stats().shock_levels = top_ + 1;
-  step.stats().residual_after_shock = approach_residual(step.sb, step.contacts, step.dt());
+}
+
+void ShockPropagation::solve_island(ImpulseStep& step, int begin, int end, Worker& worker) {
+  // Solve level by level with e = 0; bodies below the level are frozen (infinite mass), so
+  // nothing pushes back down the pile and the stack's weight is carried by the ground. A level's
+  // groups are ordered by their first contact and lie within one island each, so the island's are
+  // one run of them.
+  auto first_group_from = [&](int l, int contact) {
+    int lo = level_group_[l], hi = level_group_[l + 1];
+    while (lo < hi) {
+      const int mid = (lo + hi) / 2;
+      if (grouped_[group_start_[mid]].index < contact) lo = mid + 1; else hi = mid;
+    }
+    return lo;
+  };
+  for (int l = 0; l <= top_; ++l) {
+    const int first = first_group_from(l, begin), last = first_group_from(l, end);
+    if (first < last) solve_level(step, l, first, last, worker);
+  }
 }
 
 void ShockPropagation::build_graph(const ImpulseStep& step) {
@@ -216,42 +240,29 @@ double ShockPropagation::frozen_target(const SolverBodyArray& sb, const SolverCo
   return 0.0;
 }
 
-void ShockPropagation::solve_level(ImpulseStep& step, int l, bool same_contacts) {
-  SolverBodyArray& sb = step.resting;
+void ShockPropagation::solve_level(ImpulseStep& step, int l, int first, int last, Worker& worker) {
   // A frozen body keeps its velocity through the level, so each contact's target is set once.
-  if (same_contacts) {
-    // The last run's groups of the level, their contacts in the same order: only the targets,
-    // which read the frozen bodies' velocities, are new.
-    for (int k = group_start_[level_group_[l]]; k < group_start_[level_group_[l + 1]]; ++k) {
-      LevelContact& lc = grouped_[k];
-      lc.target = allow_gap(step.contacts[lc.index], frozen_target(sb, step.contacts[lc.index], l), step.dt());
-    }
-  } else {
-    level_contacts_.clear();
-    for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
-      const SolverContact& c = step.contacts[by_level_[k]];
-      const bool a_moves = moves(c.a, l), b_moves = moves(c.b, l);
-      level_contacts_.push_back({by_level_[k], a_moves, b_moves, allow_gap(c, frozen_target(sb, c, l), step.dt())});
-    }
-    group_level_contacts(step);
+  for (int k = group_start_[first]; k < group_start_[last]; ++k) {
+    LevelContact& lc = grouped_[k];
+    lc.target = allow_gap(step.contacts[lc.index], frozen_target(step.resting, step.contacts[lc.index], l), step.dt());
   }
-  level_first_group_ = level_group_[l];
-  level_group_count_ = level_group_[l + 1] - level_group_[l];
-  solve_groups(step);
+  solve_groups(step, first, last, worker);
 }
 
-void ShockPropagation::solve_groups(ImpulseStep& step) {
+void ShockPropagation::solve_groups(ImpulseStep& step, int group_begin, int group_end, Worker& worker) {
   // First the groups whose touching points can all stick, each solved directly; then the passes
   // over the rest. Each pass runs over the groups that have not converged yet: a group leaves
   // once no impulse of a pass changes a point's velocity by more than kRestingConverged (its later
-  // passes would change nothing that matters). The level ends as a whole level did before it was
-  // split: when every group has converged, or when the largest change of a pass stalls. (Letting a
+  // passes would change nothing that matters). The island's part of the level ends as a whole
+  // level did before it was split: when every group has converged, or when the largest change of a
+  // pass stalls (one island's stall does not end another's: islands are solved apart). (Letting a
   // stalled group leave on its own took some 10% more off pyramid_10, but let a tumbling pile's
   // slowly converging groups run on, and the brick wall's penetration went from 0.57 to 4.6 mm.)
   ImpulseStepStats& stats = step.stats();
   const int passes = step.settings().shock_passes;
   const PassContext context(step);
-  const double direct_residual = solve_sticking_groups(step);
+  std::vector<int>& active_ = worker.active;
+  const double direct_residual = solve_sticking_groups(step, group_begin, group_end, active_);
   PassProgress level(kShockProgress, kShockStallPasses);
   bool stalled = false;
   int pass = 0;
@@ -294,17 +305,18 @@ void ShockPropagation::solve_groups(ImpulseStep& step) {
   }
   stats.shock_pass_count = std::max(stats.shock_pass_count, pass);
   stats.shock_passes_used += pass;
+  ++stats.shock_parts;
   if (stalled) ++stats.shock_stalled_levels;
 }
 
-double ShockPropagation::solve_sticking_groups(ImpulseStep& step) {
+double ShockPropagation::solve_sticking_groups(ImpulseStep& step, int group_begin, int group_end,
+                                               std::vector<int>& active_) {
   // Each group of bodies on frozen supports solved directly when every touching point can stick
   // (sticking_solve.hpp); the groups it declines stay active for the passes.
-  const int groups = level_groups();
   const bool direct = step.settings().sticking_solves;
   double worst = -1.0;
   active_.clear();
-  for (int g = 0; g < groups; ++g) {
+  for (int g = group_begin; g < group_end; ++g) {
     if (!direct) {  // every group by passes
       set_frozen_collision_matrices(step, group(g));
       active_.push_back(g);
@@ -330,8 +342,13 @@ void ShockPropagation::set_frozen_collision_matrices(ImpulseStep& step, std::spa
     if (!(lc.a_moves && lc.b_moves)) set_collision_matrix(step.contacts[lc.index], lc.a_moves, lc.b_moves);
 }
 
-void ShockPropagation::group_level_contacts(const ImpulseStep& step) {
+void ShockPropagation::group_level(const ImpulseStep& step, int l) {
   // A contact moves the level's body it touches; one between two of them links their groups.
+  level_contacts_.clear();
+  for (int k = level_start_[l]; k < level_start_[l + 1]; ++k) {
+    const SolverContact& c = step.contacts[by_level_[k]];
+    level_contacts_.push_back({by_level_[k], moves(c.a, l), moves(c.b, l), 0.0});
+  }
   auto moving = [&](const LevelContact& lc) {
     const SolverContact& c = step.contacts[lc.index];
     return MovingBodies::of(c.a, c.b, lc.a_moves, lc.b_moves);

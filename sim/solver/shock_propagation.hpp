@@ -24,7 +24,19 @@ class ShockPropagation {
   // `same_contacts`: the step's contact set is the last run's, contact for contact (every one kept
   // from the last step at its index: StepContext::same_as_last_step), so the graph, the levels and
   // each level's groups are the last run's too and are not formed again.
+  // The whole contact set as one island.
   void run(ImpulseStep& step, bool same_contacts = false);
+  // What a worker of a run keeps for itself while it solves an island: the groups not converged yet.
+  struct Worker {
+    std::vector<int> active;
+  };
+  // A run in parts: `prepare` forms the graph, the levels and every level's groups (or keeps the
+  // last run's), then `solve_island` solves the contacts [begin, end) of the set, an island
+  // (islands.hpp), level by level, on the compact bodies (step.resting, gathered), with `worker`'s
+  // scratch. Islands share no moving body, so they may be solved at once on several threads, each
+  // with a worker of its own, and give the same result in any order.
+  void prepare(ImpulseStep& step, bool same_contacts);
+  void solve_island(ImpulseStep& step, int begin, int end, Worker& worker);
   // Level of each body in the last run (-1: fixed; kUnsupported: not connected to the ground).
   const std::vector<int>& levels() const { return level_; }
   static constexpr int kUnsupported = 1 << 30;
@@ -51,26 +63,25 @@ class ShockPropagation {
   void build_graph(const ImpulseStep& step);
   void assign_levels(const ImpulseStep& step);
   void group_contacts_by_level(const ImpulseStep& step);
-  // With `same_contacts`, the level's groups are the last run's, their targets set again.
-  void solve_level(ImpulseStep& step, int level, bool same_contacts);
+  // The groups [first, last) of a level (an island's): their targets, then their passes.
+  void solve_level(ImpulseStep& step, int level, int first, int last, Worker& worker);
   // The level's contacts sorted into groups that share no moving body, so that each group leaves
   // the passes once it has converged (a pyramid's boxes of one level touch only the
   // frozen level below: one group each); appended to the run's groups.
-  void group_level_contacts(const ImpulseStep& step);
-  // The level's passes over its groups, each group until it converges, the level until it stalls.
-  void solve_groups(ImpulseStep& step);
-  // The level's groups of bodies on frozen supports solved directly where every touching point
+  void group_level(const ImpulseStep& step, int level);
+  // The passes over groups [begin, end) of a level, each group until it converges, all of them
+  // until they stall.
+  void solve_groups(ImpulseStep& step, int group_begin, int group_end, Worker& worker);
+  // The groups [begin, end) of bodies on frozen supports solved directly where every touching point
   // sticks (sticking_solve.hpp); the rest become the passes' active groups. Returns the largest
   // residual of a direct solve (m/s), or -1 when none was solved.
-  double solve_sticking_groups(ImpulseStep& step);
+  double solve_sticking_groups(ImpulseStep& step, int group_begin, int group_end, std::vector<int>& active);
   // Sets K and its inverse of the contacts that reach a frozen body to the moving body's share.
   static void set_frozen_collision_matrices(ImpulseStep& step, std::span<const LevelContact> contacts);
-  // The contacts of group g of the level being solved, and the level's number of groups.
+  // The contacts of group g of the run.
   std::span<const LevelContact> group(int g) const {
-    const int k = level_first_group_ + g;
-    return {grouped_.data() + group_start_[k], grouped_.data() + group_start_[k + 1]};
+    return {grouped_.data() + group_start_[g], grouped_.data() + group_start_[g + 1]};
   }
-  int level_groups() const { return level_group_count_; }
 
   int level_of(int body) const { return body < 0 ? -1 : level_[body]; }
   // A contact belongs to the higher of its two bodies' levels.
@@ -93,8 +104,7 @@ class ShockPropagation {
   std::vector<LevelContact> grouped_;
   std::vector<int> group_start_;
   std::vector<int> level_group_;
-  int level_first_group_ = 0, level_group_count_ = 0;  // the level being solved
-  std::vector<int> active_;  // the groups of the level not converged yet
+  Worker own_;  // run's worker
 };
 
 }  // namespace boxpile

@@ -54,10 +54,11 @@ class SolverBodyArray {
   // (dv = j / m, d omega = I^-1 (r x j)). A fixed body or the ground has zero inverse mass and
   // inertia, so it does not move; a frozen body is left out by its flag.
   void apply(const SolverContact& c, const Vec3& j, bool a_moves = true, bool b_moves = true) {
-    if (a_moves) push(at(c.a), j, c.ra);
-    // The ground is not pushed: its zero inverse mass would leave it at rest, but its momenta
-    // would chain every ground contact's impulse to the one before.
-    if (b_moves && c.b != kGround) push(at(c.b), -j, c.rb);
+    // Neither the ground nor a fixed body is pushed: its zero inverse mass would leave it at rest,
+    // but its momenta would chain every contact's impulse on it to the one before, and islands
+    // solved at once on several threads (islands.hpp) would all write them.
+    if (a_moves && at(c.a).inv_mass != 0.0) push(at(c.a), j, c.ra);
+    if (b_moves && c.b != kGround && at(c.b).inv_mass != 0.0) push(at(c.b), -j, c.rb);
   }
 
  private:

@@ -12,6 +12,7 @@
 #include "boxpile/sim/collision/collide.hpp"
 #include "boxpile/sim/scene.hpp"
 #include "boxpile/sim/step_profile.hpp"
+#include "boxpile/sim/thread_pool.hpp"
 #include "boxpile/sim/solver/impulse.hpp"
 #include "boxpile/sim/solver/wire.hpp"
 
@@ -56,6 +57,7 @@ struct StepContext {
   double dt = 0.0;    // s, this step's length (a penalty substep is a step of its own)
   WorldCounters& counters;
   std::vector<CollisionEvent>& events;
+  ThreadPool& pool;  // the world's threads (solver.threads), for work that splits into independent parts
 };
 
 }  // namespace boxpile

@@ -76,6 +76,7 @@ struct RunOptions {
   std::optional<std::string> out;  // absent: print a summary instead
   std::optional<int> iterations;   // --set iterations=N: ODE QuickStep's or Bullet's passes
   std::vector<std::string> set;    // "[ENGINE.]KEY=VALUE": any setting of the engine (boxpile settings)
+  std::optional<int> threads;        // --threads: our engine's solver.threads; the scene's when absent
   bool profile = false;            // print where the steps' time went, stage by stage (ours)
   RunLimits limits;
 };
@@ -91,6 +92,7 @@ struct CompareOptions {
   std::optional<double> dt;          // s; the scene's when absent
   std::optional<double> duration;    // s; the scene's when absent
   std::vector<std::string> set;      // "ENGINE.KEY=VALUE" (the prefix optional when one engine runs)
+  std::optional<int> threads;        // --threads: our engine's solver.threads; the scene's when absent
   std::string report = "boxpile-report";
   RunLimits limits;
   StartsOptions starts;  // outcome statistics over perturbed starts
@@ -133,6 +135,7 @@ struct StabilityOptions {
   std::vector<std::string> engines;  // empty: the registry's stability list
   std::vector<std::string> scenes;   // empty: the catalogue (fixtures/hard/)
   std::vector<std::string> set;      // "ENGINE.KEY=VALUE" (the prefix optional when one engine runs)
+  std::optional<int> threads;        // --threads: our engine's solver.threads; the scene's when absent
   std::string report = "boxpile-stability";
   RunLimits limits;
   bool tune = false;          // --tune

@@ -31,6 +31,7 @@ void add_compare_command(CLI::App& app, CompareOptions& options) {
   cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() +
                       " (own: the scene's solver.method; default: " + engine_list(default_engines(&DefaultLists::compare)) + ")")->delimiter(',')->allow_extra_args(false);
   add_time_options(*cmd, options.dt, options.duration);
+  add_threads_option(*cmd, options.threads);
   add_set_option(*cmd, options.set);
   add_report_option(*cmd, options.report, "");
   add_limit_options(*cmd, options.limits, false);
@@ -53,6 +54,7 @@ int run_compare_command(const CompareOptions& options) {
   }
   Scene& scene = *loaded;
   apply_time_options(scene, options.dt, options.duration, options.limits);
+  apply_threads_option(scene, options.threads);
   check_engines_differ(settings.engines, scene, "--engines");
   for (const std::string& engine : settings.engines) {
     check_run_work(scene, engine, settings.settings_of(engine), options.limits, options.dt.has_value());

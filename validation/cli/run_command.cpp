@@ -100,6 +100,7 @@ void add_run_command(CLI::App& app, RunOptions& options) {
   cmd->add_option("--engine", options.engine, "Engine: one of " + engine_choices() + " (own: the scene's solver.method)")
       ->required();
   add_time_options(*cmd, options.dt, options.duration);
+  add_threads_option(*cmd, options.threads);
   cmd->add_option("--every", options.every, "Record a frame every K steps (and at the start)")
       ->check(CLI::Range(1, std::numeric_limits<int>::max()))  // (PositiveNumber prints DBL_MAX in full)
       ->capture_default_str();
@@ -131,6 +132,7 @@ int run_run(const RunOptions& options) {
   }
   Scene& scene = *loaded;
   apply_time_options(scene, options.dt, options.duration, options.limits);
+  apply_threads_option(scene, options.threads);
 
   std::vector<std::string> words = options.set;
   if (options.iterations) words.push_back("iterations=" + std::to_string(*options.iterations));

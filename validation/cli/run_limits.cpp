@@ -4,6 +4,7 @@
 
 #include "boxpile/sim/io/input_error.hpp"
 #include "boxpile/sim/io/json_input.hpp"
+#include "boxpile/sim/io/own_settings.hpp"
 #include "boxpile/sim/time_steps.hpp"
 #include "boxpile/reference/registry.hpp"
 
@@ -74,6 +75,26 @@ CLI::Validator non_empty() {
 void add_time_options(CLI::App& cmd, std::optional<double>& dt, std::optional<double>& duration) {
   cmd.add_option("--dt", dt, "Time step in s, in (0, 1] (default: the scene's)")->check(non_empty());
   cmd.add_option("--duration", duration, "Simulated time in s, >= 0 (default: the scene's)")->check(non_empty());
+}
+
+namespace {
+const Setting<Scene>& threads_setting() {
+  const Setting<Scene>* row = own_settings_table().find("threads");
+  if (row == nullptr) throw std::logic_error("our solver declares no \"threads\" setting");
+  return *row;
+}
+}  // namespace
+
+void add_threads_option(CLI::App& cmd, std::optional<int>& threads) {
+  const SettingInfo& info = threads_setting().info;
+  cmd.add_option("--threads", threads,
+                 "Threads our engine's step runs on (solver.threads: " + info.what + "; default: the scene's, "
+                 "else every core)")
+      ->check(CLI::Range(static_cast<int>(info.min), static_cast<int>(info.max)));
+}
+
+void apply_threads_option(Scene& scene, const std::optional<int>& threads) {
+  if (threads) threads_setting().apply(scene, nlohmann::json(*threads));
 }
 
 void apply_time_options(Scene& scene, const std::optional<double>& dt, const std::optional<double>& duration,

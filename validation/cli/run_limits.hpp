@@ -58,6 +58,12 @@ CLI::Validator whole_number();
 // value is refused (CLI11 would leave the option unset and the scene's value in force).
 void add_time_options(CLI::App& cmd, std::optional<double>& dt, std::optional<double>& duration);
 
+// --threads N: the threads our engine's impulse method runs on (its `threads` setting, whose
+// declaration gives the range and the meaning). Absent, the scene's solver.threads.
+void add_threads_option(CLI::App& cmd, std::optional<int>& threads);
+// Sets the scene's solver.threads to the flag's value, when given.
+void apply_threads_option(Scene& scene, const std::optional<int>& threads);
+
 // Overrides the scene's dt and duration by the flags given, then checks them and the step count
 // against the cap. The error names the flag when one was given, else the scene's field.
 void apply_time_options(Scene& scene, const std::optional<double>& dt, const std::optional<double>& duration,

@@ -74,6 +74,7 @@ void add_stability_command(CLI::App& app, StabilityOptions& options) {
                    "scene, 1 when it fails one (the reference engines' failures are reported, never fatal)");
   cmd->add_option("--engines", options.engines, "Comma-separated engines among " + engine_choices() + " (default: " + engine_list(default_engines(&DefaultLists::stability)) + ")")->delimiter(',')->allow_extra_args(false);
   add_set_option(*cmd, options.set);
+  add_threads_option(*cmd, options.threads);
   cmd->add_option("--scenes", options.scenes, "Scene files or directories of them (default: fixtures/hard/)");
   cmd->add_flag("--tune", options.tune,
                 "After each cell, search for the cheapest settings that pass every check (dt halved and solver passes "
@@ -122,6 +123,7 @@ int run_stability_command(const StabilityOptions& options) {
     scenes.push_back(load_scene(file, options.limits.load()));
     // The caps of run and compare: a scene of 2.4e14 steps is refused, not run until killed.
     apply_time_options(scenes.back(), std::nullopt, std::nullopt, options.limits);
+    apply_threads_option(scenes.back(), options.threads);
     check_engines_differ(settings.engines, scenes.back(), "--engines");
     for (const std::string& engine : settings.engines) {
       check_run_work(scenes.back(), engine, settings.settings_of(engine), options.limits, false);
