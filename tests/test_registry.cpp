@@ -288,7 +288,7 @@ TEST_CASE("A loader bound and the --set bound are one declaration", "[registry]"
     }
     ++checked;
   }
-  CHECK(checked == 12);  // every numeric key of `solver` and `collision`
+  CHECK(checked == 13);  // every numeric key of `solver` and `collision`, `solver.threads` among them
 }
 
 // docs/scene-format.md's `solver` and `collision` tables state each key's default, unit and

@@ -85,7 +85,8 @@ StabilityCell run_stability_cell(const Scene& scene_file, std::string_view engin
     if (loop.stopped) monitor.stopped_non_finite();
   } catch (const EngineRefused& e) {
     // The engine could not take the scene, or a state it reached: the cell fails, judged on the
-    // steps it ran, and the matrix goes on.
+    // steps it ran, and the matrix goes on. (An engine that breaks its protocol is an error of
+    // the whole command, exit 2, except inside --tune's search: see tune_cell.)
     cell.refused = e.what();
     cell.steps = steps_seen;
     cell.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -207,24 +208,24 @@ TunedCell tune_cell(const Scene& scene, std::string_view engine, const Stability
     try {
       cell = run_stability_cell(scene, engine, one);
     } catch (const EngineProtocolError& e) {
-      // A process engine that takes longer than --engine-timeout for one step of a finer rung
-      // (MuJoCo 3.14's 385-box pyramid at dt/8): the attempt ran out of time, as one past the
-      // budget does, and the search goes on with what it has.
-      cell.out_of_time = true;
+      // A process engine that gives no answer within --engine-timeout on a finer rung than the
+      // user asked for (MuJoCo 3.14's 385-box pyramid at dt/4 took over 30 s a step) ends that
+      // attempt, not the catalogue run.
       cell.refused = e.what();
     }
+    // An attempt the engine refused or left unanswered is no candidate, as one past the budget is not.
+    const bool no_candidate = cell.out_of_time || !cell.refused.empty();
     ++best.attempts;
     const double miss = worst_miss(cell.checks);
-    // An attempt the budget cut short is no candidate: it did not run the scene.
-    const bool better = !cell.out_of_time && (best.passed ? cell.passed && cell.us_per_sim_s() < best.us_per_sim_s
-                                                          : cell.passed || miss < kImproves * best_miss);
+    const bool better = !no_candidate && (best.passed ? cell.passed && cell.us_per_sim_s() < best.us_per_sim_s
+                                                      : cell.passed || miss < kImproves * best_miss);
     if (better) {
       const int attempts = best.attempts;
       best = tuned_from(cell, tried, attempts);
       best_miss = miss;
     }
     if (cell.out_of_time) best.out_of_budget = true;
-    return std::make_pair(better, cell.passed && !cell.out_of_time);
+    return std::make_pair(better, cell.passed && !no_candidate);
   };
   auto with = [](json base, const json& more) {
     for (const auto& [k, v] : more.items()) base[k] = v;
