@@ -12,13 +12,6 @@ namespace {
 // the absolute change with the tolerance itself (as if |E0| were 1 J).
 constexpr double kSmallestEnergyScale = 1e-12;
 
-double smallest_edge(const Scene& scene) {
-  double smallest = std::numeric_limits<double>::infinity();
-  for (const BodyDesc& b : scene.bodies)
-    for (const BoxShape& box : b.boxes) smallest = std::min(smallest, 2.0 * box.half_extents.minCoeff());
-  return std::isfinite(smallest) ? smallest : 0.0;
-}
-
 double kinetic_energy(const RigidBody& b) {
   if (b.fixed) return 0.0;
   return 0.5 * b.mass * b.v.squaredNorm() + 0.5 * b.omega.dot(b.R * b.inertia_body * b.R.transpose() * b.omega);
@@ -36,6 +29,13 @@ double enclosing_radius(const RigidBody& b) {
 }
 
 }  // namespace
+
+double smallest_edge(const Scene& scene) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const BodyDesc& b : scene.bodies)
+    for (const BoxShape& box : b.boxes) smallest = std::min(smallest, 2.0 * box.half_extents.minCoeff());
+  return std::isfinite(smallest) ? smallest : 0.0;
+}
 
 RunMonitor::RunMonitor(const Scene& scene) : scene_(scene), bodies_(make_bodies(scene)) {
   up_ = -down_direction(scene.gravity);

@@ -55,6 +55,10 @@ struct RunMeasures {
   double smallest_edge = 0.0;        // m, of any box in the scene
 };
 
+// The smallest edge of any box in the scene (m; 0 for a scene without boxes): the scale of the
+// penetration check and of --tune's slops.
+double smallest_edge(const Scene& scene);
+
 class RunMonitor {
  public:
   explicit RunMonitor(const Scene& scene);

@@ -1,20 +1,9 @@
 #include "boxpile/validation/stability/tune_moves.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
+#include "boxpile/validation/stability/stability_checks.hpp"
 
 namespace boxpile {
 namespace {
-
-using nlohmann::json;
-
-double smallest_edge(const Scene& scene) {
-  double smallest = std::numeric_limits<double>::infinity();
-  for (const BodyDesc& b : scene.bodies)
-    for (const BoxShape& box : b.boxes) smallest = std::min(smallest, 2.0 * box.half_extents.minCoeff());
-  return std::isfinite(smallest) ? smallest : 1.0;
-}
 
 // The penetration the scene's check allows (m): slops are set to a tenth of it.
 double allowed_depth(const Scene& scene) { return scene.checks.penetration * smallest_edge(scene); }
