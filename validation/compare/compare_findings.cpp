@@ -2,19 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "boxpile/validation/compare/compare.hpp"
+#include "boxpile/validation/core/format_number.hpp"
 
 namespace boxpile {
 namespace {
 
-std::string fmt(double x, const char* format = "%.3g") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, format, x);
-  return buf;
-}
-std::string at(double t) { return fmt(t, "%.3f") + " s"; }
+// Three significant digits: the findings are sentences, not tables.
+std::string figure(double x) { return format_number(x, "%.3g"); }
+std::string at(double t) { return format_number(t, "%.3f") + " s"; }
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -86,8 +83,8 @@ void add_energy(const CompareResult& r, const FindingLimits& limits, std::vector
   // scene's energy.
   const bool by_motion = limits.energy_fraction * in_motion >= limits.energy_floor * scale;
   const auto share = [&](double gap) {
-    return by_motion ? fmt(std::abs(gap) / in_motion) + " of the " + fmt(in_motion) + " J in motion"
-                     : fmt(std::abs(gap) / scale) + " of the scene's " + fmt(scale) + " J (" + fmt(in_motion) +
+    return by_motion ? figure(std::abs(gap) / in_motion) + " of the " + figure(in_motion) + " J in motion"
+                     : figure(std::abs(gap) / scale) + " of the scene's " + figure(scale) + " J (" + figure(in_motion) +
                            " J in motion)";
   };
   const std::optional<double> chaos = chaos_time(r);
@@ -105,8 +102,8 @@ void add_energy(const CompareResult& r, const FindingLimits& limits, std::vector
     }
     const std::string whose = r.runs.size() == 2 ? r.runs[1 - e].engine + "'s" : "the engines' median";
     const auto gap_text = [&](std::size_t k) {
-      return fmt(std::abs(gap[k])) + " J " + (gap[k] < 0 ? "lower" : "higher") + " (" + fmt(f.energy[k]) +
-             " J against " + fmt(theirs[k]) + " J at " + at(f.t[k]) + ")";
+      return figure(std::abs(gap[k])) + " J " + (gap[k] < 0 ? "lower" : "higher") + " (" + figure(f.energy[k]) +
+             " J against " + figure(theirs[k]) + " J at " + at(f.t[k]) + ")";
     };
     // The first frame from which the gap stays past the limit, with one sign, for
     // `energy_persistence` (or to the end): an impact that merely falls a few steps earlier in one
@@ -158,7 +155,7 @@ void add_odd_one_out(const CompareResult& r, std::vector<CompareFinding>& out) {
     for (const EngineRun& o : r.runs)
       if (o.engine != run.engine) others.push_back(o.engine);
     out.push_back({run.engine, "odd_one_out",
-                   "leaves the others first: more than " + fmt(threshold) + " m from each of " + join(others) +
+                   "leaves the others first: more than " + figure(threshold) + " m from each of " + join(others) +
                        " by " + at(*left_all) + ", while they " +
                        (others_part ? "agree with each other until " + at(*others_part) : "agree with each other throughout"),
                    left_all});
@@ -175,10 +172,10 @@ void add_penetration(const CompareResult& r, const FindingLimits& limits, std::v
     const double mine = r.runs[e].deepest.depth, theirs = consensus(all, e);
     if (mine <= floor || mine <= limits.penetration_factor * theirs) continue;
     out.push_back({r.runs[e].engine, "penetration",
-                   "goes " + fmt(mine) + " m deep at " + at(r.runs[e].deepest_t) + ", " +
-                       (theirs > 0.0 ? fmt(mine / theirs) + " times " + (r.runs.size() == 2 ? r.runs[1 - e].engine + "'s" : std::string("the engines' median")) + " (" + fmt(theirs) + " m)"
+                   "goes " + figure(mine) + " m deep at " + at(r.runs[e].deepest_t) + ", " +
+                       (theirs > 0.0 ? figure(mine / theirs) + " times " + (r.runs.size() == 2 ? r.runs[1 - e].engine + "'s" : std::string("the engines' median")) + " (" + figure(theirs) + " m)"
                                      : std::string("where the others do not penetrate")) +
-                       "; " + fmt(100.0 * limits.penetration_edge_fraction) + "% of the smallest box edge is " + fmt(floor) + " m",
+                       "; " + figure(100.0 * limits.penetration_edge_fraction) + "% of the smallest box edge is " + figure(floor) + " m",
                    r.runs[e].deepest_t});
   }
 }
