@@ -150,10 +150,12 @@ void check_tune_moves(std::string_view engine, const std::vector<TuneMove>& move
   if (moves.empty()) return;
   const std::vector<SettingInfo> all = engine_settings(engine);
   for (const TuneMove& m : moves)
-    for (const auto& [key, value] : m.settings.items())
+    for (const auto& item : m.settings.items()) {
+      const std::string& key = item.key();
       if (std::none_of(all.begin(), all.end(), [&](const SettingInfo& s) { return s.key == key; }))
         throw std::logic_error("tune move \"" + m.label + "\" of " + std::string(engine) + " sets \"" + key +
                                "\", which is not one of its settings");
+    }
 }
 
 TunedCell tuned_from(const StabilityCell& cell, const nlohmann::json& tried, int attempts) {
