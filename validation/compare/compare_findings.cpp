@@ -19,6 +19,11 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// Whom engine `e` is measured against, in words: the other engine of a pair, else the median.
+std::string against_whom(const CompareResult& r, std::size_t e) {
+  return r.runs.size() == 2 ? r.runs[1 - e].engine + "'s" : std::string("the engines' median");
+}
+
 // What engine `e` is measured against: the median of every engine's value (its own among them)
 // when three or more ran, so that one odd engine does not move it; the other engine's when two did.
 double consensus(const std::vector<double>& values, std::size_t e) {
@@ -100,7 +105,7 @@ void add_energy(const CompareResult& r, const FindingLimits& limits, std::vector
       theirs[k] = consensus(all, e);
       gap[k] = f.energy[k] - theirs[k];
     }
-    const std::string whose = r.runs.size() == 2 ? r.runs[1 - e].engine + "'s" : "the engines' median";
+    const std::string whose = against_whom(r, e);
     const auto gap_text = [&](std::size_t k) {
       return figure(std::abs(gap[k])) + " J " + (gap[k] < 0 ? "lower" : "higher") + " (" + figure(f.energy[k]) +
              " J against " + figure(theirs[k]) + " J at " + at(f.t[k]) + ")";
@@ -173,7 +178,7 @@ void add_penetration(const CompareResult& r, const FindingLimits& limits, std::v
     if (mine <= floor || mine <= limits.penetration_factor * theirs) continue;
     out.push_back({r.runs[e].engine, "penetration",
                    "goes " + figure(mine) + " m deep at " + at(r.runs[e].deepest_t) + ", " +
-                       (theirs > 0.0 ? figure(mine / theirs) + " times " + (r.runs.size() == 2 ? r.runs[1 - e].engine + "'s" : std::string("the engines' median")) + " (" + figure(theirs) + " m)"
+                       (theirs > 0.0 ? figure(mine / theirs) + " times " + against_whom(r, e) + " (" + figure(theirs) + " m)"
                                      : std::string("where the others do not penetrate")) +
                        "; " + figure(100.0 * limits.penetration_edge_fraction) + "% of the smallest box edge is " + figure(floor) + " m",
                    r.runs[e].deepest_t});
