@@ -135,7 +135,8 @@ constexpr int kCoarserRungs = 2;
 // an improvement (rounding of the measures).
 constexpr double kImproves = 0.99;
 
-// The first of the engine's settings that counts solver passes, and the sleeping switch.
+// The engine's setting of the first of `keys` it has (the one that counts solver passes, the
+// sleeping switch, a tune move's key).
 std::optional<SettingInfo> setting_named(std::string_view engine, std::initializer_list<std::string_view> keys) {
   const std::vector<SettingInfo> all = engine_settings(engine);
   for (std::string_view key : keys)
@@ -147,15 +148,11 @@ std::optional<SettingInfo> setting_named(std::string_view engine, std::initializ
 // Every key a move sets is one of the engine's settings: a move the engine cannot take is a
 // defect of the moves table, not of the user's input.
 void check_tune_moves(std::string_view engine, const std::vector<TuneMove>& moves) {
-  if (moves.empty()) return;
-  const std::vector<SettingInfo> all = engine_settings(engine);
   for (const TuneMove& m : moves)
-    for (const auto& item : m.settings.items()) {
-      const std::string& key = item.key();
-      if (std::none_of(all.begin(), all.end(), [&](const SettingInfo& s) { return s.key == key; }))
-        throw std::logic_error("tune move \"" + m.label + "\" of " + std::string(engine) + " sets \"" + key +
+    for (const auto& item : m.settings.items())
+      if (!setting_named(engine, {item.key()}))
+        throw std::logic_error("tune move \"" + m.label + "\" of " + std::string(engine) + " sets \"" + item.key() +
                                "\", which is not one of its settings");
-    }
 }
 
 TunedCell tuned_from(const StabilityCell& cell, const nlohmann::json& tried, int attempts) {
