@@ -1,13 +1,13 @@
 # `cmake --install build --prefix P`: the libraries, the headers under P/include/boxpile/, the
 # boxpile program, the fixtures, sweep grids and report assets under P/share/boxpile/, and the CMake package
-# (find_package(boxpile) gives boxpile::sim, boxpile::scene_io, boxpile::reference,
+# (find_package(boxpile) gives boxpile::sim, boxpile::scene_io, boxpile::checks, boxpile::reference,
 # boxpile::judge and boxpile::validation).
 include(CMakePackageConfigHelpers)
 
 set(BOXPILE_CMAKE_INSTALL_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/boxpile)
 
 # Each library's export name is its short name: boxpile_sim becomes boxpile::sim.
-set(boxpile_libraries boxpile_sim boxpile_scene_io boxpile_reference boxpile_judge boxpile_validation)
+set(boxpile_libraries boxpile_sim boxpile_scene_io boxpile_checks boxpile_reference boxpile_judge boxpile_validation)
 foreach(lib IN LISTS boxpile_libraries)
   string(REPLACE "boxpile_" "" short ${lib})
   set_target_properties(${lib} PROPERTIES EXPORT_NAME ${short})

@@ -1,7 +1,8 @@
 // libFuzzer target: the scene loader, and a few steps of every engine on what it accepts.
-// What must hold for any input: parse_scene either throws InputError or returns a scene that
-// every engine (ours, ODE, Bullet) steps without crashing, without an ODE error and with finite
-// states. Anything else (a crash, a sanitizer report, an abort) is a finding.
+// What must hold for any input: parse_checked_scene (the loader, then the scene's checks) either
+// throws InputError or returns a scene that every engine (ours, ODE, Bullet) steps without
+// crashing, without an ODE error and with finite states. Anything else (a crash, a sanitizer
+// report, an abort) is a finding.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 #include "boxpile/sim/finite.hpp"
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/sim/world.hpp"
+#include "boxpile/validation/stability/scene_checks.hpp"
 
 namespace {
 
@@ -43,7 +45,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   Scene scene;
   try {
-    scene = parse_scene(text, "fuzz.json");
+    scene = parse_checked_scene(text, "fuzz.json");
   } catch (const InputError&) {
     return 0;  // refused with a message: fine
   }

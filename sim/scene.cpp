@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include <algorithm>
-
 namespace boxpile {
 namespace {
 
@@ -55,28 +53,6 @@ std::vector<RigidBody> make_bodies(const Scene& scene) {
 
 double collision_event_speed(const Scene& scene, double dt) {
   return std::max(kEventSpeedMin, kEventSpeedGravitySteps * scene.gravity.norm() * dt);
-}
-
-}  // namespace boxpile
-
-namespace boxpile {
-
-bool has_check(const SceneChecks& c, std::string_view key) {
-  if (key == "energy_rise" || key == "penetration") return true;
-  if (key == "energy_conserved") return c.energy_conserved.has_value();
-  if (key == "rest") return c.rest.has_value();
-  if (key == "no_turning") return c.no_turning.has_value();
-  if (key == "rebound") return c.rebound.has_value();
-  if (key == "slides") return !c.slides.empty();
-  if (key == "stays_behind") return !c.stays_behind.empty();
-  return false;
-}
-
-std::vector<std::string_view> checks_without_reason(const SceneChecks& c) {
-  std::vector<std::string_view> missing;
-  for (const std::string_view key : kCheckKeys)
-    if (has_check(c, key) && !c.reasons.contains(std::string(key))) missing.push_back(key);
-  return missing;
 }
 
 Vec3 TruthTrajectory::at(double t) const {

@@ -137,69 +137,6 @@ struct BodyDesc {
   std::optional<Wire> wire;  // constrained to a wire (the bone); unset for ordinary bodies
 };
 
-// What a scene promises to hold in every engine: the checks of the hard-scene catalogue
-// (docs/scene-format.md, "Checks"; measured by validation/stability/stability_checks.hpp). Bodies are
-// named in the file and resolved to scene indices by the loader.
-struct RestCheck {
-  // m/s: the fastest point of any body at the end (|v| + |omega| r, r the body's farthest box
-  // corner from its centre of mass) stays below this. Judged by speed, not kinetic energy, so
-  // that a 1,000 kg box and a 1 kg one are held to the same motion.
-  double speed = 1e-3;
-  double max_move = 1e-3;  // m: no body's position ever moves farther than this from its start
-};
-struct TurningCheck {
-  double limit = 1e-3;           // rad/s: no body turns faster than this
-  std::optional<double> until;   // s: checked up to this time (the whole run when unset)
-};
-// After its first impact the body's centre rises to `rest_height` + `height` (the analytic
-// e^2 h), within the relative `tolerance`.
-struct ReboundCheck {
-  int body = 0;
-  double rest_height = 0.0;  // m, the centre's height along -gravity when resting
-  double height = 0.0;       // m, expected rise above rest_height
-  double tolerance = 0.05;   // relative
-};
-// The body's centre ends `distance` from its start, within `tolerance` (both m).
-struct SlideCheck {
-  int body = 0;
-  double distance = 0.0;
-  double tolerance = 0.0;
-};
-// The body's centre stays where normal . x >= offset (in front of a wall it must not pass).
-struct SideCheck {
-  int body = 0;
-  Vec3 normal = Vec3::UnitX();  // unit
-  double offset = 0.0;          // m
-};
-struct SceneChecks {
-  // Total energy (kinetic + gravitational) never above its start by more than this fraction of
-  // the start's |E| in any step.
-  double energy_rise = 1e-4;
-  // e = 1 scenes: |E - E0| stays within this fraction of |E0| (unset: not checked).
-  std::optional<double> energy_conserved;
-  std::optional<RestCheck> rest;
-  std::optional<TurningCheck> no_turning;
-  std::optional<ReboundCheck> rebound;
-  std::vector<SlideCheck> slides;
-  std::vector<SideCheck> stays_behind;
-  // The deepest penetration over the run stays below this fraction of the smallest box edge.
-  double penetration = 0.01;
-  // Why each limit is what it is, by the check's key in the file ("energy_rise", "rest", ...):
-  // the published test it follows, the physical scale of the scene it is derived from, or the
-  // precision of the numbers. Optional for a user's scene; every scene of the hard catalogue
-  // gives one for each of its checks.
-  std::map<std::string, std::string> reasons;
-};
-
-// The keys of a scene's "checks" object, in the order reports list them ("reasons" aside).
-inline constexpr std::array<std::string_view, 8> kCheckKeys = {
-    "energy_rise", "energy_conserved", "penetration", "rest", "no_turning", "rebound", "slides", "stays_behind"};
-// Whether the scene's checks hold the check of this key (energy_rise and penetration always do,
-// at their defaults when the file does not give them).
-bool has_check(const SceneChecks& checks, std::string_view key);
-// The keys of the checks the scene holds that give no reason (the hard catalogue has none).
-std::vector<std::string_view> checks_without_reason(const SceneChecks& checks);
-
 // What the scene's bodies do, known in closed form (docs/scene-format.md, "Truth"): what
 // `boxpile accuracy` and the tests measure every engine's error against. Bodies are named in the
 // file and resolved to scene indices by the loader.
@@ -259,7 +196,12 @@ struct Scene {
   SolverSettings solver;
   TimeSettings time;
   bool allow_initial_overlap = false;
-  SceneChecks checks;
+  // What the scene promises to hold in every engine: its "checks" object as the file gives it,
+  // compact JSON text ("" when the file has none). The checks are validation's, one file each
+  // (validation/stability/checks/, docs/scene-format.md "Checks"): each reads its own key, and
+  // every command that runs checks loads scenes through load_checked_scene()
+  // (validation/stability/scene_checks.hpp), so that a bad check is refused at load.
+  std::string checks;
   SceneTruth truth;  // empty when the scene states none
   // A cap on work, not read from the file (the loader's LoadLimits, the command line's
   // --max-pairs): our World refuses a step whose broadphase finds more pairs than this.

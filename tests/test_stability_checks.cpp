@@ -9,6 +9,7 @@
 
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/validation/rulers/rebound_tracker.hpp"
+#include "boxpile/validation/stability/scene_checks.hpp"
 #include "boxpile/validation/stability/stability_checks.hpp"
 
 using namespace boxpile;
@@ -16,7 +17,7 @@ using namespace boxpile;
 namespace {
 
 Scene one_box(const std::string& checks) {
-  return parse_scene(R"({"name": "t", "time": {"dt": 0.01, "duration": 1},
+  return parse_checked_scene(R"({"name": "t", "time": {"dt": 0.01, "duration": 1},
     "ground": {}, "bodies": [{"name": "box", "mass": 2, "half_extents": [0.5, 0.5, 0.5], "position": [0, 0, 0.5]}],
     "checks": )" + checks + "}", "t.json");
 }
@@ -124,6 +125,48 @@ TEST_CASE("a body that passes a wall is caught, and a stopped run fails finitene
   CHECK_FALSE(r[0].passed);
 }
 
+TEST_CASE("a body must end beyond a plane, wherever it went on the way", "[checks]") {
+  // Held to x >= 0.325 at the end (normal given unnormalised): the margin is the last position's.
+  const Scene s = one_box(R"({"ends_beyond": [{"body": "box", "normal": [3, 0, 0], "offset": 0.325}]})");
+  RunMonitor m(s);
+  m.observe(0, {state({-1, 0, 0.5})});
+  m.observe(1, {state({2.0, 0, 0.5})});  // past it on the way: not what counts
+  m.observe(2, {state({0.3, 0, 0.5})});
+  std::vector<SceneCheckResult> r = m.evaluate();
+  CHECK(find(r, "ends_beyond box").value == Approx(0.3 - 0.325));
+  CHECK_FALSE(find(r, "ends_beyond box").passed);
+  CHECK(find(r, "ends_beyond box").key == "ends_beyond");
+  CHECK(describe(find(r, "ends_beyond box")) == "ends_beyond box -0.025 m < 0");
+  m.observe(3, {state({9.48, 0, 0.5})});
+  r = m.evaluate();
+  CHECK(find(r, "ends_beyond box").value == Approx(9.48 - 0.325));
+  CHECK(find(r, "ends_beyond box").passed);
+}
+
+TEST_CASE("the table of checks: one row per file, in report order, each read from its own key", "[checks]") {
+  std::vector<std::string_view> keys;
+  for (const CheckRow* row : check_rows()) {
+    INFO(row->key);
+    keys.push_back(row->key);
+    CHECK(row->meaning.size() > 20);
+    CHECK(row->read != nullptr);
+    CHECK(find_check_row(row->key) == row);
+    // The two held by default are the two that say nothing of the scene's own motion.
+    CHECK(row->held_by_default == !row->of_its_own);
+  }
+  CHECK(keys == std::vector<std::string_view>{"energy_rise", "energy_conserved", "penetration", "rest", "no_turning",
+                                              "rebound", "slides", "stays_behind", "ends_beyond"});
+  CHECK(find_check_row("reasons") == nullptr);
+  // Results come in the table's order whatever the order of the file's keys.
+  const Scene s = one_box(R"({"no_turning": {"limit": 1}, "penetration": 0.5, "rest": {}, "energy_conserved": 0.1})");
+  RunMonitor m(s);
+  m.observe(0, {state({0, 0, 0.5})});
+  std::vector<std::string> names;
+  for (const SceneCheckResult& r : m.evaluate()) names.push_back(r.name);
+  CHECK(names == std::vector<std::string>{"finite", "energy_rise", "energy_conserved", "penetration", "rest_speed",
+                                          "rest_move", "no_turning"});
+}
+
 TEST_CASE("scene checks: unknown keys and unknown bodies are errors naming the path", "[checks]") {
   auto error_of = [](const std::string& checks) {
     try {
@@ -140,6 +183,11 @@ TEST_CASE("scene checks: unknown keys and unknown bodies are errors naming the p
   CHECK(error_of(R"({"rest": {"max_move": -1}})").find("checks.rest.max_move: must be > 0") != std::string::npos);
   CHECK(error_of(R"({"stays_behind": [{"body": "box", "normal": [0, 0, 0], "offset": 0}]})") ==
         "t.json: checks.stays_behind[0].normal: must not be zero");
+  CHECK(error_of(R"({"ends_beyond": [{"body": "ram", "normal": [1, 0, 0], "offset": 0.3}]})") ==
+        "t.json: checks.ends_beyond[0].body: no body named \"ram\" in the scene");
+  CHECK(error_of(R"({"ends_beyond": [{"body": "box", "normal": [1, 0, 0]}]})").find("checks.ends_beyond[0]") !=
+        std::string::npos);
+  CHECK(error_of(R"([1, 2])").find("t.json: checks: expected object") == 0);
   // Rest is judged by speed; the old energy limit is refused with what replaced it.
   CHECK(error_of(R"({"rest": {"kinetic_per_body": 1e-6}})") ==
         "t.json: checks.rest.kinetic_per_body: is no longer a check: rest is judged by speed, \"speed\" (m/s)");
@@ -167,7 +215,7 @@ TEST_CASE("rest is judged by speed whatever the mass, and each result carries it
     CHECK(find(r, "penetration").reason == "the penetration reason");
     CHECK(find(r, "energy_rise").key == "energy_rise");
     CHECK(find(r, "energy_rise").reason.empty());
-    CHECK(checks_without_reason(s.checks) == std::vector<std::string_view>{"energy_rise"});
+    CHECK(read_scene_checks(s).without_reason() == std::vector<std::string_view>{"energy_rise"});
     return find(r, "rest_speed");
   };
   const SceneCheckResult heavy = rest_speed(1000.0, 5e-4);

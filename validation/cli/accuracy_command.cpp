@@ -16,6 +16,7 @@
 #include "boxpile/validation/cli/report_command.hpp"
 #include "boxpile/validation/core/engine_settings.hpp"
 #include "boxpile/validation/core/output_safety.hpp"
+#include "boxpile/validation/stability/scene_checks.hpp"
 #include "boxpile/validation/stability/stability.hpp"
 
 namespace boxpile::cli {
@@ -95,7 +96,7 @@ int run_accuracy_command(const AccuracyOptions& options) {
   std::vector<std::filesystem::path> inputs;
   for (const std::string& file : catalogue_files(options.scenes)) {
     const Activity loading("loading " + file);
-    scenes.push_back(load_scene(file, options.limits.load()));
+    scenes.push_back(load_checked_scene(file, options.limits.load()));
     inputs.emplace_back(file);
     const Scene& scene = scenes.back();
     if (settings.truth == TruthKind::Analytic && scene.truth.empty()) {

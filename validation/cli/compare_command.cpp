@@ -12,6 +12,7 @@
 #include "boxpile/validation/core/output_safety.hpp"
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/compare/report.hpp"
+#include "boxpile/validation/stability/scene_checks.hpp"
 
 namespace boxpile::cli {
 
@@ -50,7 +51,7 @@ int run_compare_command(const CompareOptions& options) {
   std::optional<Scene> loaded;
   {
     const Activity loading("loading " + options.scene);
-    loaded.emplace(load_scene(options.scene, options.limits.load()));
+    loaded.emplace(load_checked_scene(options.scene, options.limits.load()));
   }
   Scene& scene = *loaded;
   apply_time_options(scene, options.dt, options.duration, options.limits);

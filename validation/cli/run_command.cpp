@@ -21,6 +21,7 @@
 #include "boxpile/validation/core/recording.hpp"
 #include "boxpile/validation/core/run_loop.hpp"
 #include "boxpile/validation/rulers/state_meter.hpp"
+#include "boxpile/validation/stability/scene_checks.hpp"
 
 namespace boxpile::cli {
 namespace {
@@ -128,7 +129,7 @@ int run_run(const RunOptions& options) {
   std::optional<Scene> loaded;
   {
     const Activity loading("loading " + options.scene);
-    loaded.emplace(load_scene(options.scene, options.limits.load()));
+    loaded.emplace(load_checked_scene(options.scene, options.limits.load()));
   }
   Scene& scene = *loaded;
   apply_time_options(scene, options.dt, options.duration, options.limits);

@@ -8,6 +8,7 @@
 #include "boxpile/validation/core/json_output.hpp"
 #include "boxpile/validation/core/output_safety.hpp"
 #include "boxpile/validation/scene/scene_generator.hpp"
+#include "boxpile/validation/stability/scene_checks.hpp"
 
 namespace boxpile::cli {
 namespace {
@@ -91,7 +92,7 @@ int run_scene_command(const SceneOptions& options) {
   }
   const std::string text = scene.dump(1);
   // What is written loads: the loader's checks (overlaps, ranges) are the judge.
-  const Scene loaded = parse_scene(text, options.out.value_or("<stdout>"));
+  const Scene loaded = parse_checked_scene(text, options.out.value_or("<stdout>"));
   if (out) {
     write_json_file(scene, *out);
     std::cerr << "boxpile scene: " << loaded.name << ", " << loaded.bodies.size() << " boxes\nscene: "

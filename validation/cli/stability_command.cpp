@@ -15,6 +15,7 @@
 #include "boxpile/validation/core/engine_settings.hpp"
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/core/output_safety.hpp"
+#include "boxpile/validation/stability/scene_checks.hpp"
 #include "boxpile/validation/stability/stability.hpp"
 #include "boxpile/validation/stability/stability_report.hpp"
 
@@ -120,7 +121,7 @@ int run_stability_command(const StabilityOptions& options) {
   const std::vector<std::string> files = options.scenes.empty() ? catalogue : catalogue_files(options.scenes);
   for (const std::string& file : files) {
     const Activity loading("loading " + file);
-    scenes.push_back(load_scene(file, options.limits.load()));
+    scenes.push_back(load_checked_scene(file, options.limits.load()));
     // The caps of run and compare: a scene of 2.4e14 steps is refused, not run until killed.
     apply_time_options(scenes.back(), std::nullopt, std::nullopt, options.limits);
     apply_threads_option(scenes.back(), options.threads);
@@ -165,7 +166,7 @@ int run_stability_merge_command(const StabilityOptions& options) {
     const nlohmann::json doc =
         json_input::parse(json_input::read_text_file(path, options.limits.max_input_bytes), path);
     try {
-      parts.push_back(stability_from_json(doc, [&](const std::string& file) { return load_scene(file, options.limits.load()); }));
+      parts.push_back(stability_from_json(doc, [&](const std::string& file) { return load_checked_scene(file, options.limits.load()); }));
     } catch (const nlohmann::json::exception& e) {
       throw InputError(path, "", std::string("not a boxpile stability report: ") + e.what());
     }

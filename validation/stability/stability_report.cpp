@@ -9,6 +9,7 @@
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/core/format_number.hpp"
 #include "boxpile/validation/core/report_directory.hpp"
+#include "boxpile/validation/stability/scene_checks.hpp"
 
 namespace boxpile {
 namespace {
@@ -199,7 +200,7 @@ json stability_json(const StabilityResult& r) {
   json scenes = json::array();
   for (const Scene& s : r.scenes) {
     scenes.push_back({{"name", s.name}, {"file", s.source}, {"note", s.note}, {"bodies", s.bodies.size()},
-                      {"dt", s.time.dt}, {"duration", s.time.duration}, {"reasons", s.checks.reasons}});
+                      {"dt", s.time.dt}, {"duration", s.time.duration}, {"reasons", read_scene_checks(s).reasons}});
   }
   return {{"engines", r.engines}, {"scenes", scenes}, {"cells", cells}, {"own_passed", r.own_passed()},
           {"whole_catalogue", r.whole_catalogue}, {"shards", r.shards}, {"cells_total", r.cells_total},
@@ -422,7 +423,7 @@ std::string stability_markdown(const StabilityResult& r, const std::vector<std::
   for (std::size_t k = 0; k < r.engines.size(); ++k) md << "---|";
   md << '\n';
   for (const Scene& s : r.scenes) {
-    if (!s.checks.rest) continue;
+    if (!read_scene_checks(s).holds("rest")) continue;
     md << "| " << s.name << " |";
     for (const std::string& e : r.engines) {
       for (const StabilityCell& c : r.cells) {

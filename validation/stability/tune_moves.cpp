@@ -1,12 +1,13 @@
 #include "boxpile/validation/stability/tune_moves.hpp"
 
+#include "boxpile/validation/stability/checks/penetration.hpp"
 #include "boxpile/validation/stability/stability_checks.hpp"
 
 namespace boxpile {
 namespace {
 
 // The penetration the scene's check allows (m): slops are set to a tenth of it.
-double allowed_depth(const Scene& scene) { return scene.checks.penetration * smallest_edge(scene); }
+double allowed_depth(const Scene& scene) { return penetration_fraction(scene) * smallest_edge(scene); }
 
 }  // namespace
 

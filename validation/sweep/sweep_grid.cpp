@@ -7,6 +7,7 @@
 #include "boxpile/sim/io/scene_loader.hpp"
 #include "boxpile/reference/registry.hpp"
 #include "boxpile/validation/core/engine_settings.hpp"
+#include "boxpile/validation/stability/scene_checks.hpp"
 
 namespace boxpile {
 namespace {
@@ -27,7 +28,7 @@ std::vector<GridScene> read_scenes(const JsonNode& node, const fs::path& base, c
     const fs::path file = fs::path(path).is_absolute() ? fs::path(path) : base / path;
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) entry.fail("no scene file " + file.lexically_normal().string());
-    scenes.push_back({path, load_scene(file.lexically_normal().string(), caps)});
+    scenes.push_back({path, load_checked_scene(file.lexically_normal().string(), caps)});
   }
   return scenes;
 }

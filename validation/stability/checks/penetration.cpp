@@ -1,0 +1,48 @@
+// penetration: the deepest overlap over the run (between bodies and with the ground) stays below
+// this fraction of the scene's smallest box edge. Held in every scene (default 0.01).
+#include "boxpile/validation/stability/checks/penetration.hpp"
+
+namespace boxpile {
+
+using json_input::JsonNode;
+namespace {
+
+constexpr double kDefaultFraction = 0.01;
+
+class PenetrationCheck final : public Check {
+ public:
+  explicit PenetrationCheck(double fraction) : fraction_(fraction) {}
+  void evaluate(const RunView& run, std::vector<SceneCheckResult>& out) const override {
+    const RunMeasures& m = run.measures;
+    out.push_back(at_most("penetration", m.deepest_penetration, fraction_ * m.smallest_edge, "m"));
+  }
+
+ private:
+  double fraction_;
+};
+
+double read_fraction(const std::optional<JsonNode>& node) {
+  return node ? json_input::read_positive(*node) : kDefaultFraction;
+}
+
+std::unique_ptr<Check> read_penetration(const std::optional<JsonNode>& node, const Scene&) {
+  return std::make_unique<PenetrationCheck>(read_fraction(node));
+}
+
+}  // namespace
+
+double penetration_fraction(const Scene& scene) {
+  if (scene.checks.empty()) return kDefaultFraction;
+  const nlohmann::json doc = {{"checks", json_input::parse(scene.checks, scene.source)}};
+  return read_fraction(JsonNode(doc, scene.source).at("checks").find("penetration"));
+}
+
+const CheckRow& penetration_check() {
+  static const CheckRow row{"penetration",
+                            "the deepest overlap over the run stays below this fraction of the smallest box edge "
+                            "(default 0.01)",
+                            30, true, false, read_penetration};
+  return row;
+}
+
+}  // namespace boxpile
