@@ -21,6 +21,9 @@ import time
 
 import png  # python3-png
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from browser_checks import check, failures  # noqa: E402
+
 ENGINES = ["own", "ode", "bullet"]
 # Each engine's colour, read from the page's data (the engine registry's colours).
 COLOURS = {}
@@ -69,13 +72,6 @@ DOT_PIXELS = (8, 20)
 GRAPH = (1000, 100, 8)
 GRAPH_ROUNDING = 0.051
 
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAIL: " + message)
 
 
 def chromium_command(chromium, extra, url):

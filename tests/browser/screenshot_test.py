@@ -20,6 +20,8 @@ from replay_test import (GROUND_SATURATION, GROUND_VALUE, HUE_TOLERANCE, MIN_SAT
                          hue_distance, hue_of, read_png)
 import colorsys  # noqa: E402
 
+from browser_checks import check, failures  # noqa: E402
+
 WINDOW = (1200, 600)
 # Five 1 m cubes in a 400-600 x 600 viewport cover tens of thousands of pixels; 300 is far above
 # antialiasing noise and far below the real count.
@@ -28,13 +30,6 @@ MIN_ENGINE_PIXELS = 300
 # single-colour page a handful.
 MIN_DISTINCT_COLOURS = 200
 
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAIL: " + message)
 
 
 def default_engines(boxpile):
