@@ -229,7 +229,7 @@ TEST_CASE("A small sweep returns every cell with its cost and error", "[sweep]")
     CHECK(c.steps == 120);  // 0.5 s at the scene's 1/240 s
     CHECK(c.us_per_step > 0.0);
     CHECK(c.us_per_simulated_second == Approx(c.us_per_step / c.spec.dt).epsilon(1e-12));
-    for (const ErrorMeasure& m : kErrorMeasures) CHECK(c.measures.error.at(std::string(m.name)).is_number());
+    for (const MeasureDeclaration& m : kErrorMeasures) CHECK(c.measures.error.at(std::string(m.name)).is_number());
     // A stack of five at rest: every engine keeps it within 1 mm for half a second, never rising.
     CHECK(c.measures.error.at("stack_height").get<double>() < 1e-3);
     CHECK(c.measures.error.at("penetration").get<double>() < 1e-3);

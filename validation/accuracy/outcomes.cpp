@@ -183,7 +183,7 @@ OutcomeStatistics run_outcomes(const Scene& scene, const std::vector<OutcomeEntr
       OutcomePair p;
       p.a = out.engines[a].label;
       p.b = out.engines[b].label;
-      for (const OutcomeMeasure& m : kOutcomeMeasures) {
+      for (const MeasureDeclaration& m : kOutcomeMeasures) {
         const std::string name(m.name);
         const std::vector<double> none;
         const auto& sa = out.engines[a].samples.count(name) ? out.engines[a].samples.at(name) : none;
@@ -206,7 +206,7 @@ OutcomeStatistics run_outcomes(const Scene& scene, const std::vector<OutcomeEntr
 nlohmann::json outcomes_json(const OutcomeStatistics& s) {
   using nlohmann::json;
   json measures = json::array();
-  for (const OutcomeMeasure& m : kOutcomeMeasures) measures.push_back({{"name", m.name}, {"unit", m.unit}, {"what", m.what}});
+  for (const MeasureDeclaration& m : kOutcomeMeasures) measures.push_back({{"name", m.name}, {"unit", m.unit}, {"what", m.what}});
   json engines = json::array();
   for (const EngineOutcomes& e : s.engines) {
     json summary = json::object();
@@ -249,13 +249,13 @@ std::string outcomes_markdown(const OutcomeStatistics& s) {
      << format_number(s.settings.perturbation, "%g") << " m in a direction drawn per start and body (seed "
      << s.settings.seed << "), at dt = " << format_number(s.dt, "%.6g") << " s. Per measure the mean ± the sample "
      << "standard deviation:\n\n| engine |";
-  for (const OutcomeMeasure& m : kOutcomeMeasures) md << ' ' << m.name << " (" << m.unit << ") |";
+  for (const MeasureDeclaration& m : kOutcomeMeasures) md << ' ' << m.name << " (" << m.unit << ") |";
   md << " non-finite |\n|---|";
   for (std::size_t i = 0; i < kOutcomeMeasures.size(); ++i) md << "---|";
   md << "---|\n";
   for (const EngineOutcomes& e : s.engines) {
     md << "| " << e.label << " |";
-    for (const OutcomeMeasure& m : kOutcomeMeasures) {
+    for (const MeasureDeclaration& m : kOutcomeMeasures) {
       const auto it = e.summary.find(std::string(m.name));
       md << ' ' << (it == e.summary.end() ? std::string("—") : mean_sd_text(it->second)) << " |";
     }
@@ -266,7 +266,7 @@ std::string outcomes_markdown(const OutcomeStatistics& s) {
      << format_number(s.settings.significance, "%g") << " / " << kOutcomeMeasures.size()
      << " (Bonferroni over the measures). Start by start, the two agree on a start when every measure of their "
         "runs from it lies within the larger of their own spreads (sd):\n\n| pair |";
-  for (const OutcomeMeasure& m : kOutcomeMeasures) md << ' ' << m.name << ": D, p (Welch p) |";
+  for (const MeasureDeclaration& m : kOutcomeMeasures) md << ' ' << m.name << ": D, p (Welch p) |";
   md << " starts agreeing | verdict |\n|---|";
   for (std::size_t i = 0; i < kOutcomeMeasures.size(); ++i) md << "---|";
   md << "---|---|\n";

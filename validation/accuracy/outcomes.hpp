@@ -20,17 +20,13 @@
 #include "boxpile/sim/engine.hpp"
 #include "boxpile/sim/scene.hpp"
 #include "boxpile/validation/accuracy/two_sample.hpp"
+#include "boxpile/validation/core/measure.hpp"
 
 namespace boxpile {
 
 // The measures of a run's end, in report order. "The pile" is the free bodies not on a wire (a
 // bone on its wire is left out; the scene's energy counts every body).
-struct OutcomeMeasure {
-  std::string_view name;
-  std::string_view unit;
-  std::string_view what;
-};
-inline constexpr std::array<OutcomeMeasure, 5> kOutcomeMeasures = {{
+inline constexpr std::array<MeasureDeclaration, 5> kOutcomeMeasures = {{
     {"stacked", "bodies", "bodies of the pile resting on another body at the end (in a stack, not touching the ground)"},
     {"tallest", "m", "height of the tallest stack's highest point above the ground at the end"},
     {"com_shift", "m", "distance across gravity of the pile's centre of mass at the end from its start"},

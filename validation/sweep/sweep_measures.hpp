@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "boxpile/sim/scene.hpp"
+#include "boxpile/validation/core/measure.hpp"
 #include "boxpile/validation/stability/stability_checks.hpp"
 
 namespace boxpile {
@@ -17,12 +18,7 @@ namespace boxpile {
 // The error measures, in report order, each with its unit and what it is. A measure that does not
 // apply to a scene is null: the stack measures need a scene whose free bodies all start in stacks
 // (a resting stack or pile; not one with a body in flight or on a wire).
-struct ErrorMeasure {
-  std::string_view name;
-  std::string_view unit;
-  std::string_view what;
-};
-inline constexpr std::array<ErrorMeasure, 5> kErrorMeasures = {{
+inline constexpr std::array<MeasureDeclaration, 5> kErrorMeasures = {{
     {"stack_height", "m", "settled height error: largest |height change| (along gravity) of a body, start to end"},
     {"drift", "m", "largest sideways (across gravity) move of a body, start to end"},
     {"penetration", "m", "deepest penetration at any step"},

@@ -52,7 +52,7 @@ PlotSpec log_plot(std::string name, std::string title, std::string xlabel, std::
   return spec;
 }
 
-PlotSpec front_plot(const SweepReport& r, const std::string& scene, const std::string& stem, const ErrorMeasure& m,
+PlotSpec front_plot(const SweepReport& r, const std::string& scene, const std::string& stem, const MeasureDeclaration& m,
                     const std::vector<std::string>& engines) {
   const std::string measure(m.name);
   PlotSpec spec = log_plot("front_" + stem + "_" + measure, name_of(r, scene) + ": " + measure + " against cost",
@@ -121,7 +121,7 @@ PlotSpec convergence_plot(const CellResult& c, const std::string& stem) {
 
 // ODE's and Bullet's error against "iterations": one line per engine and combination of its other
 // settings and dt. Empty when no engine sweeps its iterations.
-PlotSpec iterations_plot(const SweepReport& r, const std::string& scene, const std::string& stem, const ErrorMeasure& m) {
+PlotSpec iterations_plot(const SweepReport& r, const std::string& scene, const std::string& stem, const MeasureDeclaration& m) {
   const std::string measure(m.name);
   PlotSpec spec = log_plot("iterations_" + stem + "_" + measure,
                            name_of(r, scene) + ": " + measure + " against solver iterations",
@@ -166,7 +166,7 @@ std::vector<std::string> write_sweep_plots(const SweepReport& r, const fs::path&
         stem += std::to_string(s + 1);
       }
     }
-    for (const ErrorMeasure& m : kErrorMeasures) {
+    for (const MeasureDeclaration& m : kErrorMeasures) {
       PlotSpec front = front_plot(r, scenes[s], stem, m, engines);
       if (std::any_of(front.series.begin(), front.series.end(), [](const PlotSeries& p) { return !p.x.empty(); })) {
         specs.push_back(std::move(front));

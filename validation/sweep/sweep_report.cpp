@@ -70,13 +70,13 @@ std::string csv_field(const std::string& s) {
 std::string sweep_csv(const SweepReport& r) {
   std::ostringstream os;
   os << "index,scene,engine,settings,dt,us_per_step,us_per_simulated_second";
-  for (const ErrorMeasure& m : kErrorMeasures) os << ',' << m.name;
+  for (const MeasureDeclaration& m : kErrorMeasures) os << ',' << m.name;
   os << ",stable,passed,failed_checks\n";
   for (const CellResult& c : r.cells) {
     os << c.spec.index << ',' << csv_field(c.scene) << ',' << c.spec.engine << ',' << csv_field(settings_label(c.spec.settings))
        << ',' << format(c.spec.dt, "%.17g") << ',' << format(c.us_per_step, "%.6g") << ','
        << format(c.us_per_simulated_second, "%.6g");
-    for (const ErrorMeasure& m : kErrorMeasures) {
+    for (const MeasureDeclaration& m : kErrorMeasures) {
       const nlohmann::json& e = c.measures.error.at(std::string(m.name));
       os << ',' << (e.is_number() ? format(e.get<double>(), "%.17g") : "");
     }
@@ -110,7 +110,7 @@ std::vector<double> accuracy_levels(const SweepReport& r, const std::vector<std:
   return levels;
 }
 
-void md_scene_measure(std::ostringstream& md, const SweepReport& r, const std::string& scene, const ErrorMeasure& m,
+void md_scene_measure(std::ostringstream& md, const SweepReport& r, const std::string& scene, const MeasureDeclaration& m,
                       const std::vector<std::string>& engines) {
   const std::string measure(m.name);
   const std::vector<std::size_t> cand = candidates(r, scene, measure);
@@ -199,7 +199,7 @@ std::string sweep_md(const SweepReport& r, const std::vector<std::string>& plots
 
   for (const std::string& scene : scenes) {
     md << "\n## " << scene << '\n';
-    for (const ErrorMeasure& m : kErrorMeasures) md_scene_measure(md, r, scene, m, engines);
+    for (const MeasureDeclaration& m : kErrorMeasures) md_scene_measure(md, r, scene, m, engines);
   }
   md << "\n## Plots\n\n";
   for (const std::string& p : plots) md << "- [" << p << ".svg](" << p << ".svg)\n";
@@ -261,7 +261,7 @@ nlohmann::json sweep_json(const SweepReport& r) {
   nlohmann::json cells = nlohmann::json::array();
   for (const CellResult& c : r.cells) cells.push_back(cell_json(c));
   nlohmann::json measures = nlohmann::json::array();
-  for (const ErrorMeasure& m : kErrorMeasures) measures.push_back({{"name", m.name}, {"unit", m.unit}, {"what", m.what}});
+  for (const MeasureDeclaration& m : kErrorMeasures) measures.push_back({{"name", m.name}, {"unit", m.unit}, {"what", m.what}});
   // Fronts by cell index (the grid's numbering), per scene and measure.
   nlohmann::json fronts = nlohmann::json::object();
   auto indices = [&](const std::vector<std::size_t>& v) {
@@ -270,7 +270,7 @@ nlohmann::json sweep_json(const SweepReport& r) {
     return a;
   };
   for (const std::string& scene : report_scenes(r)) {
-    for (const ErrorMeasure& m : kErrorMeasures) {
+    for (const MeasureDeclaration& m : kErrorMeasures) {
       const SceneFronts f = fronts_of(r, scene, std::string(m.name));
       if (f.overall.empty()) continue;
       nlohmann::json& entry = fronts[scene][std::string(m.name)];
