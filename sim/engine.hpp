@@ -55,6 +55,11 @@ class Engine {
   // from body_b toward body_a, depth > 0 when penetrating); body indices in scene order, kGround
   // for the ground.
   virtual void contacts(std::vector<BodyContact>& out) const = 0;
+  // Whether the caller will read contacts() after the steps to come (on when built). An engine
+  // for which reporting them costs more than finding them (one run over the protocol, which
+  // writes and parses every point as JSON) leaves them out while off, and contacts() is then
+  // empty; one in this process finds them for its step anyway and ignores this.
+  virtual void report_contacts(bool on) { (void)on; }
 
   // --- diagnostics: what an engine can tell beside its states (by default, nothing) ---------
   // The collision events its solver recorded so far (ours); nullptr when it records none.

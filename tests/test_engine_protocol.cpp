@@ -89,6 +89,40 @@ TEST_CASE("our World over the protocol gives the in-process states to the last b
   }
 }
 
+// Callers that read the states alone (stability, sweeps, accuracy) switch the contacts off: the
+// program is then asked for none, answers with none, and its states stay those of the World in
+// this process to the last bit; switched on again, the next step brings the contacts back.
+TEST_CASE("contacts switched off are not asked for, and the states are unchanged", "[protocol]") {
+  boxpile::Scene scene = fixture("scenes/stack_10.json");
+  boxpile::World own(scene);
+  ProcessEngine served(scene, options("own-world", BOXPILE_OWN_WORLD_ENGINE));
+  served.report_contacts(false);
+  own.report_contacts(false);  // ours finds them for its step anyway and still reports them
+  std::vector<boxpile::BodyState> sa, sb;
+  std::vector<boxpile::BodyContact> ca, cb;
+  for (int k = 1; k <= 240; ++k) {
+    own.step();
+    served.step();
+    own.body_states(sa);
+    served.body_states(sb);
+    for (std::size_t i = 0; i < sa.size(); ++i) {
+      INFO("step " << k << ", body " << sa[i].name);
+      REQUIRE(sa[i].position == sb[i].position);
+      REQUIRE(sa[i].velocity == sb[i].velocity);
+    }
+    served.contacts(cb);
+    REQUIRE(cb.empty());
+  }
+  own.contacts(ca);
+  CHECK(ca.size() == 40);  // ten stacked cubes on the ground: four points on each of the ten faces
+  served.report_contacts(true);
+  own.step();
+  served.step();
+  own.contacts(ca);
+  served.contacts(cb);
+  CHECK(cb.size() == ca.size());
+}
+
 TEST_CASE("an engine's hello alone tells its capabilities before any scene", "[protocol]") {
   const boxpile::protocol::Hello hello = ProcessEngine::ask_hello("pybox", python_engine(), std::chrono::seconds(20));
   CHECK(hello.name == "pybox");

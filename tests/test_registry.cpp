@@ -592,6 +592,35 @@ TEST_CASE("stability --tune finds a passing setting that --set reproduces", "[re
   CHECK(spent.at("attempts") == 1);
 }
 
+// The order of --tune's search on a cell no setting can pass: a unit cube dropped 1 m, held to
+// rest (it must not move 1 mm), moves 1 m in every engine at every step. ODE's knobs come first,
+// one at a time at the scene's step; then the ladder, dt halved and the iterations doubled
+// together, which stops after two rungs that do not shrink the miss; then ODE's sleeping switch
+// on the closest attempt, here the given settings. Each attempt costs more than the last.
+TEST_CASE("stability --tune tries the knobs, then the ladder's rungs, then sleeping, in that order", "[registry]") {
+  const Scene scene = parse_scene(R"({"name": "drop", "time": {"dt": 0.004166666666666667, "duration": 1},
+    "ground": {}, "bodies": [{"name": "box", "mass": 1, "half_extents": [0.5, 0.5, 0.5], "position": [0, 0, 1.5]}],
+    "checks": {"rest": {"speed": 0.001, "max_move": 0.001}}})", "drop.json");
+  StabilitySettings settings;
+  settings.engines = {"ode"};
+  const StabilityCell given = run_stability_cell(scene, "ode", settings);
+  REQUIRE_FALSE(given.passed);
+  REQUIRE(given.settings.at("iterations") == 20);
+  std::vector<std::string> attempts;
+  const TunedCell tuned =
+      tune_cell(scene, "ode", settings, given, [&](std::string_view label) { attempts.emplace_back(label); });
+  CHECK(attempts == std::vector<std::string>{"stepper world", "surface_layer", "dt/2, iterations 40",
+                                             "dt/4, iterations 80", "the given settings, auto_disable"});
+  CHECK_FALSE(tuned.passed);
+  CHECK_FALSE(tuned.out_of_budget);
+  CHECK(tuned.attempts == 6);  // the cell as given and the five above
+  // None shrank the miss by 1%: the closest attempt is the cell as given (the box moved 1 m, less
+  // what it sinks into the ground).
+  CHECK(tuned.settings == json::object());
+  for (const SceneCheckResult& c : tuned.checks)
+    if (c.name == "rest_move") CHECK(c.value == Approx(1.0).margin(0.01));
+}
+
 // Every knob --tune tries is one of its engine's settings, with a value the engine's table takes,
 // and the moves scaled with the scene are: a slop a tenth of the allowed depth, a time constant
 // twice the step.

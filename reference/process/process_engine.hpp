@@ -52,6 +52,8 @@ class ProcessEngine final : public Engine {
   double time() const override { return time_; }
   void body_states(std::vector<BodyState>& out) const override;
   void contacts(std::vector<BodyContact>& out) const override;
+  // Asks the program for contacts with each step only while on (and when its hello announced them).
+  void report_contacts(bool on) override { ask_.contacts = on && hello_.contacts; }
   // The sum of the engine's `engine_seconds` when it reports them, else the wall time of the
   // round trips of the steps (the protocol's cost included).
   std::optional<double> reported_seconds() const override { return seconds_; }

@@ -116,7 +116,10 @@ json generate_scene(std::string_view kind, const SceneSizes& z) {
     for (int k = 0; k < count; ++k) {
       double q[4];
       double norm = 0;
-      for (double& c : q) norm += (c = normal(random)) * c;
+      for (double& c : q) {
+        c = normal(random);
+        norm += c * c;
+      }
       norm = std::sqrt(norm);
       const int i = k % 3 - 1, j = (k / 3) % 3 - 1, layer = k / 9;
       json b = generated_box("h" + std::to_string(k), z.mass, h, h, h, i * cell + jitter(random), j * cell + jitter(random),

@@ -124,6 +124,35 @@ PlaneSide read_plane_side(const JsonNode& node, const Scene& scene) {
   return p;
 }
 
+std::vector<PlaneSide> read_plane_sides(const JsonNode& node, const Scene& scene) {
+  std::vector<PlaneSide> sides;
+  for (std::size_t i = 0; i < node.array_size(); ++i) sides.push_back(read_plane_side(node.element(i), scene));
+  return sides;
+}
+
+namespace {
+
+class FigureAtMost final : public Check {
+ public:
+  FigureAtMost(std::string name, double RunMeasures::*figure, double limit, std::string unit)
+      : name_(std::move(name)), figure_(figure), limit_(limit), unit_(std::move(unit)) {}
+  void evaluate(const RunView& run, std::vector<SceneCheckResult>& out) const override {
+    out.push_back(at_most(name_, run.measures.*figure_, limit_, unit_));
+  }
+
+ private:
+  std::string name_;
+  double RunMeasures::*figure_;
+  double limit_;
+  std::string unit_;
+};
+
+}  // namespace
+
+std::unique_ptr<Check> figure_at_most(std::string name, double RunMeasures::*figure, double limit, std::string unit) {
+  return std::make_unique<FigureAtMost>(std::move(name), figure, limit, std::move(unit));
+}
+
 SceneCheckResult at_most(std::string name, double value, double limit, std::string unit) {
   return {std::move(name), value, limit, false, value <= limit, std::move(unit), {}, {}};
 }

@@ -111,11 +111,16 @@ struct PlaneSide {
 };
 // {"body": NAME, "normal": [x, y, z], "offset": m}; a zero normal is refused.
 PlaneSide read_plane_side(const json_input::JsonNode& node, const Scene& scene);
+// An array of those.
+std::vector<PlaneSide> read_plane_sides(const json_input::JsonNode& node, const Scene& scene);
 // The body's signed distance to the plane's side (m; >= 0 on the side it is held to).
 inline double side_margin(const PlaneSide& p, const BodyState& s) { return p.normal.dot(s.position) - p.offset; }
 
 // A result that passes when value <= limit, or value >= limit.
 SceneCheckResult at_most(std::string name, double value, double limit, std::string unit);
 SceneCheckResult at_least(std::string name, double value, double limit, std::string unit);
+
+// A check of one of the figures every run measures: `name` passes while measures.*figure <= limit.
+std::unique_ptr<Check> figure_at_most(std::string name, double RunMeasures::*figure, double limit, std::string unit);
 
 }  // namespace boxpile

@@ -27,9 +27,7 @@ class EndsBeyondCheck final : public Check {
 };
 
 std::unique_ptr<Check> read_ends_beyond(const std::optional<JsonNode>& node, const Scene& scene) {
-  std::vector<PlaneSide> sides;
-  for (std::size_t i = 0; i < node->array_size(); ++i) sides.push_back(read_plane_side(node->element(i), scene));
-  return std::make_unique<EndsBeyondCheck>(std::move(sides));
+  return std::make_unique<EndsBeyondCheck>(read_plane_sides(*node, scene));
 }
 
 }  // namespace

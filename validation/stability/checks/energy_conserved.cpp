@@ -2,23 +2,10 @@
 #include "boxpile/validation/stability/checks/check.hpp"
 
 namespace boxpile {
-
-using json_input::JsonNode;
 namespace {
 
-class EnergyConservedCheck final : public Check {
- public:
-  explicit EnergyConservedCheck(double limit) : limit_(limit) {}
-  void evaluate(const RunView& run, std::vector<SceneCheckResult>& out) const override {
-    out.push_back(at_most("energy_conserved", run.measures.energy_change, limit_, ""));
-  }
-
- private:
-  double limit_;
-};
-
-std::unique_ptr<Check> read_energy_conserved(const std::optional<JsonNode>& node, const Scene&) {
-  return std::make_unique<EnergyConservedCheck>(json_input::read_positive(*node));
+std::unique_ptr<Check> read_energy_conserved(const std::optional<json_input::JsonNode>& node, const Scene&) {
+  return figure_at_most("energy_conserved", &RunMeasures::energy_change, json_input::read_positive(*node), "");
 }
 
 }  // namespace

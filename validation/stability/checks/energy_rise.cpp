@@ -4,23 +4,10 @@
 #include "boxpile/validation/stability/checks/check.hpp"
 
 namespace boxpile {
-
-using json_input::JsonNode;
 namespace {
 
-class EnergyRiseCheck final : public Check {
- public:
-  explicit EnergyRiseCheck(double limit) : limit_(limit) {}
-  void evaluate(const RunView& run, std::vector<SceneCheckResult>& out) const override {
-    out.push_back(at_most("energy_rise", run.measures.energy_rise, limit_, ""));
-  }
-
- private:
-  double limit_;
-};
-
-std::unique_ptr<Check> read_energy_rise(const std::optional<JsonNode>& node, const Scene&) {
-  return std::make_unique<EnergyRiseCheck>(node ? json_input::read_positive(*node) : 1e-4);
+std::unique_ptr<Check> read_energy_rise(const std::optional<json_input::JsonNode>& node, const Scene&) {
+  return figure_at_most("energy_rise", &RunMeasures::energy_rise, node ? json_input::read_positive(*node) : 1e-4, "");
 }
 
 }  // namespace

@@ -32,9 +32,7 @@ class StaysBehindCheck final : public Check {
 };
 
 std::unique_ptr<Check> read_stays_behind(const std::optional<JsonNode>& node, const Scene& scene) {
-  std::vector<PlaneSide> sides;
-  for (std::size_t i = 0; i < node->array_size(); ++i) sides.push_back(read_plane_side(node->element(i), scene));
-  return std::make_unique<StaysBehindCheck>(std::move(sides));
+  return std::make_unique<StaysBehindCheck>(read_plane_sides(*node, scene));
 }
 
 }  // namespace
