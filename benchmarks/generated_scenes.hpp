@@ -1,5 +1,5 @@
 // Scenes the benchmarks build in code instead of loading from fixtures/: square pyramids of any
-// base (up to 2,870 boxes, too large to keep as files) and the Jenga tower, whose geometry is
+// base (up to 9,455 boxes, too large to keep as files) and the Jenga tower, whose geometry is
 // that of the hard catalogue's pyramids and Jenga tower; and scenes in motion: a cube of boxes
 // rammed by a heavy box, and heaps of randomly sized and turned boxes falling in layers.
 #pragma once

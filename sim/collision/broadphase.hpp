@@ -61,6 +61,13 @@ class SweepAndPrune {
   std::vector<Aabb> boxes_;  // the bodies' boxes, for the first overload
   std::vector<char> fixed_;  // the bodies' fixed flags, for the first overload
   std::vector<int> order_;
+  // A box's bounds, its body and whether it is fixed, at its place in the sweep's order.
+  struct SweptBox {
+    double lo_x, hi_x, lo_y, hi_y, lo_z, hi_z;
+    int body;
+    bool fixed;
+  };
+  std::vector<SweptBox> swept_;
   std::vector<double> key_;  // per body, its lower x bound in grains, rounded to the nearest
   std::vector<std::pair<int, int>> pairs_;
 };
