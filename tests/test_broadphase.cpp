@@ -126,3 +126,76 @@ TEST_CASE("bodies whose bounds differ by less than the sweep's grain keep their 
     CHECK(found == first);
   }
 }
+
+TEST_CASE("the sweep by cells gives the plain sweep's pairs in the plain sweep's order", "[broadphase]") {
+  // A lattice of unit boxes touching face to face (bounds on whole metres, where cell edges can
+  // fall), random boxes of 0.05-0.6 m among and above it, a few boxes of 5-15 m spanning many
+  // cells, some fixed; moved at random between calls. The plain sweep's pairs are checked
+  // against every pair tested, and the cells' must be the same list.
+  std::mt19937_64 rng(test_seed(7));
+  std::vector<Aabb> boxes;
+  std::vector<char> fixed;
+  for (int x = 0; x < 8; ++x)
+    for (int y = 0; y < 8; ++y)
+      for (int z = 0; z < 6; ++z) {
+        boxes.push_back({Vec3(x, y, z), Vec3(x + 1, y + 1, z + 1)});
+        fixed.push_back(z == 0 ? 1 : 0);
+      }
+  std::uniform_real_distribution<double> pos(-2.0, 14.0), size(0.05, 0.6), large(5.0, 15.0), unit(0.0, 1.0);
+  for (int k = 0; k < 900; ++k) {
+    const Vec3 lo(pos(rng), pos(rng), pos(rng) * 0.6);
+    const bool huge = k % 150 == 0;
+    const Vec3 extent = huge ? Vec3(size(rng), large(rng), large(rng)) : Vec3(size(rng), size(rng), size(rng));
+    boxes.push_back({lo, lo + extent});
+    fixed.push_back(unit(rng) < 0.05 ? 1 : 0);
+  }
+  const int n = static_cast<int>(boxes.size());
+  REQUIRE(n >= SweepAndPrune::kCellsFrom);
+  SweepAndPrune plain(SweepAndPrune::Search::sweep), by_cells(SweepAndPrune::Search::cells), automatic;
+  std::normal_distribution<double> step(0.0, 0.05);
+  for (int round = 0; round < 8; ++round) {
+    std::set<std::pair<int, int>> expected;
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j)
+        if (!(fixed[i] && fixed[j]) && boxes[i].overlaps(boxes[j])) expected.insert({i, j});
+    const std::vector<std::pair<int, int>> swept = plain.find_pairs(boxes, fixed);
+    CHECK(plain.cells() == 1);
+    CHECK(std::set<std::pair<int, int>>(swept.begin(), swept.end()) == expected);
+    CHECK(swept.size() == expected.size());
+    CHECK(by_cells.find_pairs(boxes, fixed) == swept);  // the same pairs in the same order
+    CHECK(by_cells.cells() > 16);
+    CHECK(automatic.find_pairs(boxes, fixed) == swept);
+    CHECK(automatic.cells() == by_cells.cells());
+    for (int i = 0; i < n; ++i) {
+      if (fixed[i]) continue;
+      // The lattice's boxes keep their whole-metre bounds in every other round.
+      if (i < 8 * 8 * 6 && round % 2 == 1) continue;
+      const Vec3 move(step(rng), step(rng), step(rng));
+      boxes[i].lo += move;
+      boxes[i].hi += move;
+    }
+  }
+}
+
+TEST_CASE("the sweep by cells stops above the cap on pairs as the plain sweep does", "[broadphase]") {
+  // 400 coincident boxes make 79,800 pairs; with a cap of 1,000 both searches return 1,001 and
+  // stop, and below the cap both return every pair.
+  std::vector<Aabb> boxes;
+  for (int k = 0; k < 400; ++k) {
+    const Vec3 lo(0.01 * (k % 7), 0.01 * (k % 5), 0.01 * (k % 3));
+    boxes.push_back({lo, lo + Vec3::Constant(1.0)});
+  }
+  // Far boxes so that the grid has more than one cell.
+  for (int k = 0; k < 100; ++k) {
+    const Vec3 lo(3.0 * (k + 1), 3.0 * (k % 10), 3.0 * (k % 4));
+    boxes.push_back({lo, lo + Vec3::Constant(0.5)});
+  }
+  const std::vector<char> fixed(boxes.size(), 0);
+  SweepAndPrune plain(SweepAndPrune::Search::sweep), by_cells(SweepAndPrune::Search::cells);
+  CHECK(plain.find_pairs(boxes, fixed, 1000).size() == 1001);
+  CHECK(by_cells.find_pairs(boxes, fixed, 1000).size() == 1001);
+  CHECK(by_cells.cells() > 1);
+  const std::size_t all = 400 * 399 / 2;
+  CHECK(plain.find_pairs(boxes, fixed, all).size() == all);
+  CHECK(by_cells.find_pairs(boxes, fixed, all) == plain.find_pairs(boxes, fixed, all));
+}
