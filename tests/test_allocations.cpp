@@ -73,3 +73,18 @@ TEST_CASE("a penalty step allocates nothing once the first steps have sized the 
   for (int k = 0; k < half_second; ++k) world.step();
   CHECK(g_allocations - before == 0);
 }
+
+TEST_CASE("a 385-box pyramid, swept cell by cell, allocates nothing in its steps, on one thread and on two",
+          "[allocations]") {
+  // From SweepAndPrune::kCellsFrom bodies on, the broadphase sweeps a y-z grid: its cells and
+  // their entries are sized when the world is built, like the rest of the step's storage.
+  Scene scene = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/hard/pyramid_10.json");
+  REQUIRE(scene.bodies.size() >= 256);
+  const int threads = GENERATE(1, 2);
+  scene.solver.threads = threads;
+  World world(scene);
+  REQUIRE(world.threads() == threads);
+  const long before = g_allocations;
+  for (int k = 0; k < 240; ++k) world.step();
+  CHECK(g_allocations - before == 0);
+}
