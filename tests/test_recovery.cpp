@@ -36,6 +36,7 @@ struct Stack {
   std::vector<CollisionEvent> events;
   ThreadPool pool{1};
   std::vector<SolverContact> contacts;
+  std::vector<ContactMatrices> matrices;  // beside contacts, as the method keeps them
   SolverBodyArray resting;
   ShockPropagation shock;
   PenetrationRecovery recovery;
@@ -73,15 +74,16 @@ struct Stack {
     c.Wb = cross_matrix(c.rb).transpose();
     c.depth = depth;
     c.slop = penetration_slop_for(scene.solver, 1.0);
-    c.Ka = collision_matrix_share(bodies[static_cast<std::size_t>(a)], c.ra);
-    if (b != kGround) c.Kb = collision_matrix_share(body_b, c.rb);
-    set_collision_matrix(c, Mat3(c.Ka + c.Kb));
+    ContactMatrices& m = matrices.emplace_back();
+    m.Ka = collision_matrix_share(bodies[static_cast<std::size_t>(a)], c.ra);
+    if (b != kGround) m.Kb = collision_matrix_share(body_b, c.rb);
+    set_collision_matrix(c, Mat3(m.Ka + m.Kb));
   }
 
   // Shock propagation's levels, then recovery with or without skipping idle phases.
   void solve(bool skip_idle) {
     StepContext ctx{scene, bodies, ground, found, same, wires, 0.0, kDt, counters, events, pool};
-    ImpulseStep step{ctx, SolverBodies{bodies, ground}, resting, contacts, impulses, stats};
+    ImpulseStep step{ctx, SolverBodies{bodies, ground}, resting, contacts, matrices, impulses, stats};
     shock.run(step);
     recovery.skip_idle_phases(skip_idle);
     recovery.run(step, &shock);
@@ -163,7 +165,7 @@ TEST_CASE("shock propagation on the last run's contact set keeps its levels and 
   };
   auto run = [](Stack& s, bool same_contacts) {
     StepContext ctx{s.scene, s.bodies, s.ground, s.found, s.same, s.wires, 0.0, kDt, s.counters, s.events, s.pool};
-    ImpulseStep step{ctx, SolverBodies{s.bodies, s.ground}, s.resting, s.contacts, s.impulses, s.stats};
+    ImpulseStep step{ctx, SolverBodies{s.bodies, s.ground}, s.resting, s.contacts, s.matrices, s.impulses, s.stats};
     s.shock.run(step, same_contacts);
   };
 

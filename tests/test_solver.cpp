@@ -221,9 +221,10 @@ TEST_CASE("a point told unloaded is one the full resting update would leave with
                                : body(point - Vec3(random_vec()), half + 0.2 * random_vec(), mass + 1.0, angle);
     c.ra = point - a.x;
     c.rb = point - b.x;
-    c.Ka = collision_matrix_share(a, c.ra);
-    c.Kb = collision_matrix_share(b, c.rb);
-    set_collision_matrix(c, true, square || k % 3 != 0);  // some against a frozen body
+    ContactMatrices m;
+    m.Ka = collision_matrix_share(a, c.ra);
+    m.Kb = collision_matrix_share(b, c.rb);
+    set_collision_matrix(c, m, true, square || k % 3 != 0);  // some against a frozen body
     const Vec3 v = random_vec();
     const Vec3 tangential = v - c.n.dot(v) * c.n;
     const Vec3 u = square ? Vec3(tangential + 1e-14 * unit(rng) * c.n) : random_vec();

@@ -55,11 +55,12 @@ struct Group {
     c.Wa = cross_matrix(c.ra).transpose();
     c.Wb = cross_matrix(c.rb).transpose();
     const bool b_moves = b != kGround && b < moving;
-    c.Ka = collision_matrix_share(bodies[static_cast<std::size_t>(a)], c.ra);
-    if (b_moves) c.Kb = collision_matrix_share(bodies[static_cast<std::size_t>(b)], c.rb);
+    ContactMatrices m;
+    m.Ka = collision_matrix_share(bodies[static_cast<std::size_t>(a)], c.ra);
+    if (b_moves) m.Kb = collision_matrix_share(bodies[static_cast<std::size_t>(b)], c.rb);
     c.depth = depth;
     c.friction = kFriction;
-    set_collision_matrix(c, true, b_moves);
+    set_collision_matrix(c, m, true, b_moves);
     contacts.push_back(c);
     level.push_back({static_cast<int>(contacts.size()) - 1, true, b_moves, 0.0});
   }

@@ -39,8 +39,8 @@ Mat3 collision_matrix_share(const RigidBody& body, const Vec3& r) {
   return K;
 }
 
-void set_collision_matrix(SolverContact& c, bool a_moves, bool b_moves) {
-  set_collision_matrix(c, (a_moves ? c.Ka : Mat3::Zero()) + (b_moves ? c.Kb : Mat3::Zero()));
+void set_collision_matrix(SolverContact& c, const ContactMatrices& m, bool a_moves, bool b_moves) {
+  set_collision_matrix(c, (a_moves ? m.Ka : Mat3::Zero()) + (b_moves ? m.Kb : Mat3::Zero()));
 }
 
 void set_collision_matrix(SolverContact& c, const Mat3& K) {

@@ -26,9 +26,10 @@ namespace boxpile {
 
 // One contact point as the solver sees it during a step (positions do not change in a step, so
 // r_A, r_B and each body's share of K are computed once).
-// The fields the resting passes read at every impulse come first, one after another, and those
-// read once per step or per phase (each body's share of K, the collision loop's own) last: a
-// contact spans some ten cache lines, and the passes then touch fewer of them.
+// Only what the passes read at every impulse is here, the fields they read first at the front:
+// every pass streams through the step's contacts, and on a pile of thousands of boxes they no
+// longer fit in the caches. Each body's share of K, read once per step or phase, is kept apart
+// (ContactMatrices), and W = [r]x^T is formed from r where it is used.
 struct SolverContact {
   int a = 0;
   int b = 0;  // kGround (-1) for the ground
@@ -55,11 +56,20 @@ struct SolverContact {
   // propagation the share of the bodies that still move. Set once per phase, not per impulse.
   Mat3 Kinv = Mat3::Zero();
   Mat3 K = Mat3::Zero();
-  Mat3 Ka = Mat3::Zero();    // 1/mA E - [rA]x IA^-1 [rA]x (zero for a fixed body)
-  Mat3 Kb = Mat3::Zero();
   double restitution = 0.0;  // e
   double collision_impulse = 0.0;  // N s, the normal impulse the collision loop gave this step
   bool active = true;        // the collision loop drops contacts that separate
+};
+
+// A contact's collision matrices apart from the SolverContact, in an array beside the solver's
+// contacts (ImpulseStep::matrices): each body's share of K, which shock propagation and recovery
+// read once per phase, and K over both bodies as prepared, which a contact kept from the last step
+// takes back instead of inverting K again.
+struct ContactMatrices {
+  Mat3 Ka = Mat3::Zero();  // 1/mA E - [rA]x IA^-1 [rA]x (zero for a fixed body)
+  Mat3 Kb = Mat3::Zero();
+  Mat3 K = Mat3::Zero(), Kinv = Mat3::Zero();
+  Vec3 Kinv_n = Vec3::Zero(), Kinv_n_size = Vec3::Zero();
 };
 
 // Body A's share of K at offset r: (1/m) E - [r]x I^-1 [r]x.
@@ -73,8 +83,8 @@ struct ImpulseCounters {
   std::uint64_t sliding = 0;               // impulses clamped to the friction cone
 };
 
-// Sets c.K and c.Kinv from the shares of the bodies that move (a fixed body has a zero share).
-void set_collision_matrix(SolverContact& c, bool a_moves, bool b_moves);
+// Sets c.K and c.Kinv from the shares (m) of the bodies that move (a fixed body has a zero share).
+void set_collision_matrix(SolverContact& c, const ContactMatrices& m, bool a_moves, bool b_moves);
 // Sets c.K to K (Ka + Kb, or the moving body's share alone) and c.Kinv from it.
 void set_collision_matrix(SolverContact& c, const Mat3& K);
 

@@ -36,7 +36,7 @@ ImpulseMethod::ImpulseMethod(const Scene& scene, std::size_t body_count)
   start_omega_.resize(body_count);
   const StepStorage storage{body_count};
   solver_contacts_.reserve(storage.contacts());
-  prepared_k_.reserve(storage.contacts());
+  matrices_.reserve(storage.contacts());
   islands_.reserve(body_count, storage.contacts());
   last_order_.reserve(storage.contacts());
   resting_bodies_.reserve(body_count);
@@ -56,7 +56,7 @@ void ImpulseMethod::for_each_island(StepContext& ctx, Stage&& stage) {
   ctx.pool.run(islands_.count(), [&](int item, int w) {
     const int island = islands_.by_size()[static_cast<std::size_t>(item)];
     Worker& worker = workers_[static_cast<std::size_t>(w)];
-    ImpulseStep step{ctx, SolverBodies{ctx.bodies, ctx.ground}, resting_bodies_, solver_contacts_, worker.counters,
+    ImpulseStep step{ctx, SolverBodies{ctx.bodies, ctx.ground}, resting_bodies_, solver_contacts_, matrices_, worker.counters,
                      worker.stats};
     stage(step, islands_.begin(island), islands_.end(island), worker);
   });
@@ -100,7 +100,7 @@ void ImpulseMethod::step(StepContext& ctx) {
   StepProfile& profile = ctx.counters.profile;
   profile.lap(Stage::prepare);
   stats_ = ImpulseStepStats{};
-  ImpulseStep step{ctx, SolverBodies{bodies, ctx.ground}, resting_bodies_, solver_contacts_, counters_.impulses, stats_};
+  ImpulseStep step{ctx, SolverBodies{bodies, ctx.ground}, resting_bodies_, solver_contacts_, matrices_, counters_.impulses, stats_};
   const auto contacts_of = [&](ImpulseStep& is, int begin, int end) {
     return std::span<SolverContact>(is.contacts.data() + begin, static_cast<std::size_t>(end - begin));
   };
@@ -166,7 +166,7 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
   const std::size_t kept = std::min(last_order_.size(), count);
   same_set_ = count > 0 && count == solver_contacts_.size();
   solver_contacts_.resize(count);
-  prepared_k_.resize(count);
+  matrices_.resize(count);
   // A pair's contacts come one after another: its slop and material are found once per pair.
   PairTerms pair;
   for (std::size_t p = 0; p < count; ++p) {
@@ -175,7 +175,7 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
     const bool same = p < kept && last_order_[p] == order[p] && ctx.same_as_last_step[k];
     same_set_ = same_set_ && same;
     if (same) {
-      const CollisionMatrix& m = prepared_k_[p];
+      const ContactMatrices& m = matrices_[p];
       c.K = m.K;
       c.Kinv = m.Kinv;
       c.Kinv_n = m.Kinv_n;
@@ -186,8 +186,8 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
     const RigidBody& a = ctx.bodies[bc.body_a];
     const RigidBody& b = bc.body_b == kGround ? ctx.ground : ctx.bodies[bc.body_b];
     if (bc.body_a != pair.a || bc.body_b != pair.b) pair = pair_terms(ctx.scene.solver, bc.body_a, bc.body_b, a, b);
-    // Filled where it stays: a SolverContact is some 600 bytes, and copying each one into the
-    // set cost a quarter of this function (perf, Jenga tower).
+    // Filled where it stays: copying each SolverContact into the set cost a quarter of this
+    // function (perf, Jenga tower, when it was some 600 bytes).
     c = SolverContact{};
     c.a = bc.body_a;
     c.b = bc.body_b;
@@ -203,10 +203,8 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
     // The shares formed in locals, so K is summed from registers rather than from the stores.
     const Mat3 Ka = a.fixed ? Mat3::Zero() : collision_matrix_share(a, c.ra);
     const Mat3 Kb = b.fixed ? Mat3::Zero() : collision_matrix_share(b, c.rb);
-    c.Ka = Ka;
-    c.Kb = Kb;
     set_collision_matrix(c, Ka + Kb);
-    prepared_k_[p] = {c.K, c.Kinv, c.Kinv_n, c.Kinv_n_size};
+    matrices_[p] = {Ka, Kb, c.K, c.Kinv, c.Kinv_n, c.Kinv_n_size};
   }
   last_order_.assign(order.begin(), order.end());
 }

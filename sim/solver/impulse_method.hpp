@@ -66,14 +66,10 @@ class ImpulseMethod final : public ContactMethod {
   std::vector<SolverContact> solver_contacts_;
   Islands islands_;
   std::vector<int> last_order_;
-  // Per solver contact, its collision matrix over both bodies as prepared: shock propagation leaves
-  // some contacts with a moving body's share alone, and a contact kept from the last step
-  // (StepContext::same_as_last_step) takes this one back instead of inverting K again.
-  struct CollisionMatrix {
-    Mat3 K, Kinv;
-    Vec3 Kinv_n, Kinv_n_size;
-  };
-  std::vector<CollisionMatrix> prepared_k_;
+  // Per solver contact, its bodies' shares of K and its collision matrix over both bodies as
+  // prepared: shock propagation leaves some contacts with a moving body's share alone, and a
+  // contact kept from the last step (StepContext::same_as_last_step) takes K back from here.
+  std::vector<ContactMatrices> matrices_;
   // Whether this step's contact set is the last step's, contact for contact (every contact kept at
   // its index): shock propagation then keeps its levels and groups.
   bool same_set_ = false;

@@ -72,6 +72,7 @@ struct ImpulseStep {
   SolverBodies sb;
   SolverBodyArray& resting;
   std::vector<SolverContact>& contacts;
+  std::vector<ContactMatrices>& matrices;  // beside contacts, index for index
   ImpulseCounters& impulses;  // the method's own records
   ImpulseStepStats& records;
 

@@ -128,17 +128,18 @@ void PenetrationRecovery::collect_phase(const ImpulseStep& step, std::span<const
     const SolverContact& c = step.contacts[k];
     const bool a_moves = moves(c.a), b_moves = moves(c.b);
     if (!a_moves && !b_moves) continue;  // nothing it could push
-    const double k_nn = normal_mass(step.contacts, k, a_moves, b_moves);
+    const double k_nn = normal_mass(step, k, a_moves, b_moves);
     if (k_nn > 0.0) phase_.push_back({k, c.a, c.b, a_moves, b_moves, 1.0 / k_nn, k_nn * step.dt() / c.slop});
   }
 }
 
-double PenetrationRecovery::normal_mass(const std::vector<SolverContact>& contacts, int k, bool a_moves, bool b_moves) {
-  const SolverContact& c = contacts[static_cast<std::size_t>(k)];
+double PenetrationRecovery::normal_mass(const ImpulseStep& step, int k, bool a_moves, bool b_moves) {
+  const Vec3& n = step.contacts[static_cast<std::size_t>(k)].n;
+  const ContactMatrices& m = step.matrices[static_cast<std::size_t>(k)];
   double& cached = normal_mass_[static_cast<std::size_t>(k)][(a_moves ? 1 : 0) + (b_moves ? 2 : 0) - 1];
   // The sum as the phases formed it before, without adding a zero share: the same to the last bit.
   if (std::isnan(cached))
-    cached = a_moves && b_moves ? c.n.dot((c.Ka + c.Kb) * c.n) : c.n.dot((a_moves ? c.Ka : c.Kb) * c.n);
+    cached = a_moves && b_moves ? n.dot((m.Ka + m.Kb) * n) : n.dot((a_moves ? m.Ka : m.Kb) * n);
   return cached;
 }
 

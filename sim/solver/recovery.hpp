@@ -72,7 +72,7 @@ class PenetrationRecovery {
   }
   // n . K n of contacts[k] over the bodies that move (at least one), formed once per run for each
   // of A alone, B alone and both.
-  double normal_mass(const std::vector<SolverContact>& contacts, int k, bool a_moves, bool b_moves);
+  double normal_mass(const ImpulseStep& step, int k, bool a_moves, bool b_moves);
 
   // One phase: `contacts` with bodies below `level` frozen (none without `shock`), solved as groups
   // that share no moving body, each by its passes until it converges.
