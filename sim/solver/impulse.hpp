@@ -26,10 +26,10 @@ namespace boxpile {
 
 // One contact point as the solver sees it during a step (positions do not change in a step, so
 // r_A, r_B and each body's share of K are computed once).
-// Only what the passes read at every impulse is here, the fields they read first at the front:
-// every pass streams through the step's contacts, and on a pile of thousands of boxes they no
-// longer fit in the caches. Each body's share of K, read once per step or phase, is kept apart
-// (ContactMatrices), and W = [r]x^T is formed from r where it is used.
+// The fields the resting passes read at every impulse come first, one after another, and the
+// collision loop's own last. Each body's share of K, read once per step or per phase, is kept
+// apart (ContactMatrices): every pass streams through the step's contacts, and on a pyramid of
+// thousands of boxes they no longer fit in the caches (docs/performance.md).
 struct SolverContact {
   int a = 0;
   int b = 0;  // kGround (-1) for the ground
