@@ -80,6 +80,7 @@ void ImpulseMethod::merge_workers() {
     st.shock_passes_used += ws.shock_passes_used;
     st.shock_parts += ws.shock_parts;
     st.shock_stalled_levels += ws.shock_stalled_levels;
+    st.residual_after_shock = std::max(st.residual_after_shock, ws.residual_after_shock);
     w.counters = ImpulseCounters{};
     w.stats = ImpulseStepStats{};
   }
@@ -128,9 +129,14 @@ void ImpulseMethod::step(StepContext& ctx) {
   if (s.shock_propagation) {
     shock_.prepare(step, same_set_);
     resting_bodies_.gather(bodies);
-    for_each_island(ctx, [&](ImpulseStep& is, int begin, int end, Worker& w) { shock_.solve_island(is, begin, end, w.shock); });
+    // Each island's residual taken on its worker, from the compact bodies, while its contacts are
+    // fresh; the step's is the largest (merge_workers).
+    for_each_island(ctx, [&](ImpulseStep& is, int begin, int end, Worker& w) {
+      shock_.solve_island(is, begin, end, w.shock);
+      w.stats.residual_after_shock =
+          std::max(w.stats.residual_after_shock, approach_residual(is.resting, contacts_of(is, begin, end), ctx.dt));
+    });
     resting_bodies_.scatter(bodies);
-    stats_.residual_after_shock = approach_residual(step.sb, solver_contacts_, ctx.dt);
     ++counters_.shock_propagation_runs;
   }
   enforce_wires(bodies, ctx.wires);
@@ -139,6 +145,9 @@ void ImpulseMethod::step(StepContext& ctx) {
   // Penetration recovery: pseudo-velocities that push overlaps apart (positions only).
   if (s.penetration_recovery > 0.0) {
     const ShockPropagation* levels = s.shock_propagation ? &shock_ : nullptr;
+    // Recovery's targets read the velocities from the compact bodies, which hold the resting
+    // phase's result: the wires may have changed some since.
+    if (!ctx.wires.empty()) resting_bodies_.gather(bodies);
     if (recovery_.prepare(step))
       for_each_island(ctx, [&](ImpulseStep& is, int begin, int end, Worker& w) {
         recovery_.solve_island(is, levels, begin, end, w.recovery);

@@ -28,7 +28,7 @@ constexpr int kRecoveryStallPasses = 3;
 // had no passes left for). Pseudo-velocities move positions only, so covering an approach adds
 // no kinetic energy: the momenta keep it, and the next step's loops resolve it (when they are cut
 // short, that energy stays instead of being paid for by the bodies sinking: docs/solver.md).
-double PenetrationRecovery::pseudo_target(const SolverBodies& sb, const SolverContact& c, double beta, double dt) {
+double PenetrationRecovery::pseudo_target(const SolverBodyArray& sb, const SolverContact& c, double beta, double dt) {
   const double un = c.n.dot(sb.relative_velocity(c));
   if (c.depth > c.slop) return beta * (c.depth - c.slop) / dt + std::max(0.0, -un);
   return -(c.slop - c.depth) / dt - un;
@@ -52,14 +52,14 @@ void PenetrationRecovery::Worker::reserve(const StepStorage& storage) {
 }
 
 void PenetrationRecovery::run(const ImpulseStep& step, const ShockPropagation* shock) {
+  step.resting.gather(step.sb.bodies);
   if (prepare(step)) solve_island(step, shock, 0, static_cast<int>(step.contacts.size()), own_);
 }
 
 bool PenetrationRecovery::prepare(const ImpulseStep& step) {
-  const SolverBodies& sb = step.sb;
   const std::vector<SolverContact>& contacts = step.contacts;
   const double beta = step.settings().penetration_recovery;
-  const std::size_t n = sb.bodies.size();
+  const std::size_t n = step.sb.bodies.size();
   pseudo_v_.assign(n, Vec3::Zero());
   pseudo_omega_.assign(n, Vec3::Zero());
   pushed_.assign(n, 0);
@@ -69,7 +69,7 @@ bool PenetrationRecovery::prepare(const ImpulseStep& step) {
   all_.clear();
   bool any_push = false;
   for (std::size_t k = 0; k < contacts.size(); ++k) {
-    target_[k] = pseudo_target(sb, contacts[k], beta, step.dt());
+    target_[k] = pseudo_target(step.resting, contacts[k], beta, step.dt());
     any_push = any_push || target_[k] > 0.0;
     all_.push_back(static_cast<int>(k));
   }

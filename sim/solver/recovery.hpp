@@ -48,7 +48,8 @@ class PenetrationRecovery {
     int skipped_phases = 0;
   };
   // A run in parts: `prepare` sets every contact's target and clears the pseudo-velocities (false:
-  // no contact asks for a push, and nothing is left to solve), then `solve_island` solves the
+  // no contact asks for a push, and nothing is left to solve); it reads the velocities from
+  // step.resting, which must hold the bodies' present ones (run gathers them), then `solve_island` solves the
   // contacts [begin, end) of the set, an island (islands.hpp), phase after phase. Islands share no
   // moving body, so they may be solved at once on several threads, each with a worker of its own.
   bool prepare(const ImpulseStep& step);
@@ -64,7 +65,7 @@ class PenetrationRecovery {
 
  private:
   // The separating pseudo-velocity contact `c` asks for, m/s (see the .cpp).
-  static double pseudo_target(const SolverBodies& sb, const SolverContact& c, double beta, double dt);
+  static double pseudo_target(const SolverBodyArray& sb, const SolverContact& c, double beta, double dt);
   // Whether contact k (between bodies a and b) may change in a pass: it asks for a push, has one,
   // or a body of it has been pushed. One that may not would stay at zero.
   bool may_change(int k, int a, int b) const {

@@ -99,7 +99,7 @@ struct PassContext {
 
 }  // namespace
 
-double approach_residual(const SolverBodies& sb, const std::vector<SolverContact>& contacts, double dt) {
+double approach_residual(const SolverBodyArray& sb, std::span<const SolverContact> contacts, double dt) {
   double worst = 0.0;
   for (const SolverContact& c : contacts)
     worst = std::max(worst, allow_gap(c, 0.0, dt) - c.n.dot(sb.relative_velocity(c)));
@@ -128,8 +128,8 @@ void ShockPropagation::run(ImpulseStep& step, bool same_contacts) {
   prepare(step, same_contacts);
   step.resting.gather(step.sb.bodies);
   solve_island(step, 0, static_cast<int>(step.contacts.size()), own_);
+  step.stats().residual_after_shock = approach_residual(step.resting, step.contacts, step.dt());
   step.resting.scatter(step.sb.bodies);
-  step.stats().residual_after_shock = approach_residual(step.sb, step.contacts, step.dt());
 }
 
 void ShockPropagation::prepare(ImpulseStep& step, bool same_contacts) {
