@@ -59,17 +59,19 @@ struct SolverContact {
   double restitution = 0.0;  // e
   double collision_impulse = 0.0;  // N s, the normal impulse the collision loop gave this step
   bool active = true;        // the collision loop drops contacts that separate
+  // K and its inverse are shock propagation's share of the bodies that move (a frozen body's left
+  // out), not the prepared Ka + Kb: a contact kept for the next step takes back its K from the
+  // shares, and only then (ImpulseMethod::prepare_solver_contacts).
+  bool frozen_k = false;
 };
 
 // A contact's collision matrices apart from the SolverContact, in an array beside the solver's
 // contacts (ImpulseStep::matrices): each body's share of K, which shock propagation and recovery
-// read once per phase, and K over both bodies as prepared, which a contact kept from the last step
-// takes back instead of inverting K again.
+// read once per phase, and from which a contact kept from the last step whose K shock propagation
+// changed (frozen_k) forms it again, as it was prepared.
 struct ContactMatrices {
   Mat3 Ka = Mat3::Zero();  // 1/mA E - [rA]x IA^-1 [rA]x (zero for a fixed body)
   Mat3 Kb = Mat3::Zero();
-  Mat3 K = Mat3::Zero(), Kinv = Mat3::Zero();
-  Vec3 Kinv_n = Vec3::Zero(), Kinv_n_size = Vec3::Zero();
 };
 
 // Body A's share of K at offset r: (1/m) E - [r]x I^-1 [r]x.

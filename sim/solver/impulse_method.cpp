@@ -166,7 +166,8 @@ void ImpulseMethod::step(StepContext& ctx) {
 void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
   // Last step's solver contacts stay in place: a contact the world kept from the last step at the
   // same index keeps its offsets and collision matrices (its bodies have not moved beyond
-  // rounding since they were formed) and only takes back its K over both bodies.
+  // rounding since they were formed) and only takes back its K over both bodies where shock
+  // propagation changed it.
   // The contacts are taken island by island (islands.hpp); a contact kept from the last step is
   // at its last place when the islands before it are the same too.
   islands_.find(ctx.contacts, ctx.bodies);
@@ -184,11 +185,13 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
     const bool same = p < kept && last_order_[p] == order[p] && ctx.same_as_last_step[k];
     same_set_ = same_set_ && same;
     if (same) {
-      const ContactMatrices& m = matrices_[p];
-      c.K = m.K;
-      c.Kinv = m.Kinv;
-      c.Kinv_n = m.Kinv_n;
-      c.Kinv_n_size = m.Kinv_n_size;
+      // Its K is as prepared unless shock propagation set its frozen share: then it is formed
+      // again from the shares, as below (the same sum, so the same K and inverse to the bit).
+      if (c.frozen_k) {
+        const ContactMatrices& m = matrices_[p];
+        set_collision_matrix(c, Mat3(m.Ka + m.Kb));
+        c.frozen_k = false;
+      }
       continue;
     }
     const BodyContact& bc = ctx.contacts[k];
@@ -213,7 +216,7 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
     const Mat3 Ka = a.fixed ? Mat3::Zero() : collision_matrix_share(a, c.ra);
     const Mat3 Kb = b.fixed ? Mat3::Zero() : collision_matrix_share(b, c.rb);
     set_collision_matrix(c, Ka + Kb);
-    matrices_[p] = {Ka, Kb, c.K, c.Kinv, c.Kinv_n, c.Kinv_n_size};
+    matrices_[p] = {Ka, Kb};
   }
   last_order_.assign(order.begin(), order.end());
 }

@@ -22,6 +22,7 @@ class Islands {
   void reserve(std::size_t bodies, std::size_t contacts) {
     groups_.reserve(bodies, contacts);
     search_order_.reserve(contacts);
+    moving_.reserve(contacts);
     order_.reserve(contacts);
     start_.reserve(contacts + 1);
     by_size_.reserve(contacts);
@@ -31,12 +32,16 @@ class Islands {
   void find(const std::vector<BodyContact>& contacts, const std::vector<RigidBody>& bodies) {
     search_order_.resize(contacts.size());
     std::iota(search_order_.begin(), search_order_.end(), 0);
-    auto moving = [&](int k) {
-      const BodyContact& c = contacts[static_cast<std::size_t>(k)];
+    // Each contact's moving bodies found once, into a compact array that the sort's three sweeps
+    // read (each would otherwise read the contact and both bodies' flags again).
+    moving_.resize(contacts.size());
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+      const BodyContact& c = contacts[k];
       const bool a_moves = !bodies[c.body_a].fixed;
       const bool b_moves = c.body_b != kGround && !bodies[c.body_b].fixed;
-      return MovingBodies::of(c.body_a, c.body_b, a_moves, b_moves);
-    };
+      moving_[k] = MovingBodies::of(c.body_a, c.body_b, a_moves, b_moves);
+    }
+    auto moving = [&](int k) { return moving_[static_cast<std::size_t>(k)]; };
     groups_.sort(std::span<const int>(search_order_), bodies.size(), moving, order_);
     start_.assign(1, 0);
     for (int i = 0; i < groups_.count(); ++i)
@@ -64,6 +69,7 @@ class Islands {
  private:
   BodyGroups groups_;
   std::vector<int> search_order_;  // 0, 1, ..., the contacts as the search found them
+  std::vector<MovingBodies> moving_;  // per contact, its moving bodies
   std::vector<int> order_;
   std::vector<int> start_;
   std::vector<int> by_size_;
