@@ -41,6 +41,7 @@ Mat3 collision_matrix_share(const RigidBody& body, const Vec3& r) {
 
 void set_collision_matrix(SolverContact& c, const ContactMatrices& m, bool a_moves, bool b_moves) {
   set_collision_matrix(c, (a_moves ? m.Ka : Mat3::Zero()) + (b_moves ? m.Kb : Mat3::Zero()));
+  c.frozen_k = !(a_moves && b_moves);
 }
 
 void set_collision_matrix(SolverContact& c, const Mat3& K) {

@@ -85,7 +85,8 @@ struct ImpulseCounters {
   std::uint64_t sliding = 0;               // impulses clamped to the friction cone
 };
 
-// Sets c.K and c.Kinv from the shares (m) of the bodies that move (a fixed body has a zero share).
+// Sets c.K and c.Kinv from the shares (m) of the bodies that move (a fixed body has a zero share),
+// and c.frozen_k when one of them is left out.
 void set_collision_matrix(SolverContact& c, const ContactMatrices& m, bool a_moves, bool b_moves);
 // Sets c.K to K (Ka + Kb, or the moving body's share alone) and c.Kinv from it.
 void set_collision_matrix(SolverContact& c, const Mat3& K);

@@ -187,11 +187,7 @@ void ImpulseMethod::prepare_solver_contacts(const StepContext& ctx) {
     if (same) {
       // Its K is as prepared unless shock propagation set its frozen share: then it is formed
       // again from the shares, as below (the same sum, so the same K and inverse to the bit).
-      if (c.frozen_k) {
-        const ContactMatrices& m = matrices_[p];
-        set_collision_matrix(c, Mat3(m.Ka + m.Kb));
-        c.frozen_k = false;
-      }
+      if (c.frozen_k) set_collision_matrix(c, matrices_[p], true, true);
       continue;
     }
     const BodyContact& bc = ctx.contacts[k];

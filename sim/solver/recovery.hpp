@@ -48,9 +48,9 @@ class PenetrationRecovery {
     int skipped_phases = 0;
   };
   // A run in parts: `prepare` sets every contact's target and clears the pseudo-velocities (false:
-  // no contact asks for a push, and nothing is left to solve); it reads the velocities from
-  // step.resting, which must hold the bodies' present ones (run gathers them), then `solve_island` solves the
-  // contacts [begin, end) of the set, an island (islands.hpp), phase after phase. Islands share no
+  // no contact asks for a push, and nothing is left to solve), reading the velocities from
+  // step.resting, which must hold the bodies' present ones (run gathers them); then `solve_island`
+  // solves the contacts [begin, end) of the set, an island (islands.hpp), phase after phase. Islands share no
   // moving body, so they may be solved at once on several threads, each with a worker of its own.
   bool prepare(const ImpulseStep& step);
   void solve_island(const ImpulseStep& step, const ShockPropagation* shock, int begin, int end, Worker& worker);

@@ -339,11 +339,7 @@ void ShockPropagation::set_frozen_collision_matrices(ImpulseStep& step, std::spa
   // Contacts that reach down to a frozen body see only the moving body's share of K. Only the
   // passes read K (the direct solve does not), so they are set only for the groups it declines.
   for (const LevelContact& lc : contacts)
-    if (!(lc.a_moves && lc.b_moves)) {
-      SolverContact& c = step.contacts[lc.index];
-      set_collision_matrix(c, step.matrices[lc.index], lc.a_moves, lc.b_moves);
-      c.frozen_k = true;
-    }
+    if (!(lc.a_moves && lc.b_moves)) set_collision_matrix(step.contacts[lc.index], step.matrices[lc.index], lc.a_moves, lc.b_moves);
 }
 
 void ShockPropagation::group_level(const ImpulseStep& step, int l) {
