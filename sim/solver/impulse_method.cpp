@@ -108,7 +108,10 @@ void ImpulseMethod::step(StepContext& ctx) {
 
   // 2. Collision loop: resolve approaching contacts with the scene's restitution.
   for_each_island(ctx, [&](ImpulseStep& is, int begin, int end, Worker&) { collision_loop(is, contacts_of(is, begin, end)); });
-  record_collision_events(step);
+  // Events come only from impulses, and impulses only from a pass: a step in which no island ran
+  // one (every point at rest or apart) has none to record.
+  if (std::any_of(workers_.begin(), workers_.end(), [](const Worker& w) { return w.stats.collision_passes_used > 0; }))
+    record_collision_events(step);
   ++counters_.collision_loop_runs;
   profile.lap(Stage::collision_loop);
 
