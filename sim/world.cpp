@@ -102,7 +102,11 @@ void World::collide_body_pairs() {
                              " pairs of bodies touch, above the cap on the pairs a step may make (--max-pairs "
                              "raises it)");
   }
-  if (pool_.size() > 1) find_pairs_ahead(pairs);
+  // The pairs' tests are shared among the threads only when there are enough of them to pay for
+  // waking a worker (a pair's test takes about a microsecond); the contacts are the same either way.
+  constexpr std::size_t kMinSharedPairs = 32;
+  const bool ahead = pool_.size() > 1 && pairs.size() >= kMinSharedPairs;
+  if (ahead) find_pairs_ahead(pairs);
   CollisionSettings cs = scene_.collision;
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const int i = pairs[p].first, j = pairs[p].second;
@@ -110,7 +114,7 @@ void World::collide_body_pairs() {
     cs.margin = pair_margin(i, j);
     reuse_.pair(i, j, cs.margin, contacts_, [&] {
       counters_.narrowphase_calls += bodies_[i].shapes.size() * bodies_[j].shapes.size();
-      if (pool_.size() == 1) {
+      if (!ahead) {
         collide_bodies(placed_, i, j, cs, contacts_);
         return;
       }
