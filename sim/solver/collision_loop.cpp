@@ -84,17 +84,17 @@ void collision_loop(ImpulseStep& step, std::span<SolverContact> contacts) {
   // decided once, before any impulse, so that the points of one face landing together all take
   // part even after the first of them has slowed the body. The lab text's loop starts from every
   // point and lets each pass's impulses decide (a point that does not approach takes none).
-  bool any_active = false;
+  bool any_starts_active = false;
   for (SolverContact& c : contacts) {
     c.start_un = c.n.dot(sb.relative_velocity(c));
     c.active = together ? c.start_un < std::min(allow_gap(c, 0.0, dt), -kCollisionSpeedMin)
                         : c.start_un < allow_gap(c, 0.0, dt) || c.depth >= 0.0;
     c.collision_impulse = 0.0;
-    any_active = any_active || c.active;
+    any_starts_active = any_starts_active || c.active;
   }
   // An island at rest has no active point: its passes would only scan for one. (Nor are its
   // events looked for: record_collision_events is skipped when no island ran a pass.)
-  if (!any_active) return;
+  if (!any_starts_active) return;
   for (int pass = 0; pass < passes; ++pass) {
     const bool any_active = together ? pair_pass(sb, contacts, restitution, friction, counters)
                                      : sequential_pass(sb, contacts, restitution, friction, dt, counters);
