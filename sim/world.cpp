@@ -7,6 +7,20 @@
 
 namespace boxpile {
 
+namespace {
+// What one pair's box-box or box-plane test costs, roughly (a microsecond on the benchmark's pairs),
+// and the pairs the contact search hands a worker at a time: taking an item costs some tens of
+// nanoseconds.
+constexpr double kPairTestSeconds = 1e-6;
+constexpr int kPairsPerItem = 8;
+
+// What the workers could take over from the caller when the search shares `pairs` tests: every
+// item but the first.
+double shareable_pair_seconds(std::size_t pairs) {
+  return static_cast<double>(std::max<std::size_t>(pairs, kPairsPerItem) - kPairsPerItem) * kPairTestSeconds;
+}
+}  // namespace
+
 World::World(const Scene& scene, std::string name)
     : scene_(scene),
       name_(std::move(name)),
@@ -103,9 +117,8 @@ void World::collide_body_pairs() {
                              "raises it)");
   }
   // The pairs' tests are shared among the threads only when there are enough of them to pay for
-  // waking a worker (a pair's test takes about a microsecond); the contacts are the same either way.
-  constexpr std::size_t kMinSharedPairs = 32;
-  const bool ahead = pool_.size() > 1 && pairs.size() >= kMinSharedPairs;
+  // waking a worker (ThreadPool::shares); the contacts are the same either way.
+  const bool ahead = pool_.shares(shareable_pair_seconds(pairs.size()));
   if (ahead) find_pairs_ahead(pairs);
   CollisionSettings cs = scene_.collision;
   for (std::size_t p = 0; p < pairs.size(); ++p) {
@@ -130,9 +143,7 @@ void World::find_pairs_ahead(const std::vector<std::pair<int, int>>& pairs) {
   // the set is the same whatever the number of threads.
   for (std::vector<BodyContact>& f : found_) f.clear();
   found_at_.assign(pairs.size(), FoundAt{});
-  // In runs of kPairsPerItem pairs: a pair's test takes about a microsecond, taking an item some
-  // tens of nanoseconds.
-  constexpr int kPairsPerItem = 8;
+  // In runs of kPairsPerItem pairs.
   const int count = static_cast<int>(pairs.size());
   pool_.run((count + kPairsPerItem - 1) / kPairsPerItem, [&](int item, int worker) {
     std::vector<BodyContact>& out = found_[static_cast<std::size_t>(worker)];
@@ -145,7 +156,7 @@ void World::find_pairs_ahead(const std::vector<std::pair<int, int>>& pairs) {
       collide_bodies(placed_, i, j, cs, out);
       found_at_[static_cast<std::size_t>(p)] = {worker, first, static_cast<int>(out.size()) - first};
     }
-  });
+  }, shareable_pair_seconds(pairs.size()));
 }
 
 void World::collide_ground() {

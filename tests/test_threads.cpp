@@ -1,14 +1,16 @@
 // The impulse method on several threads: islands of touching bodies are solved independently, so
 // the bodies' states after every step are the same to the bit whatever `solver.threads` is. Compared
 // on scenes in motion, where islands form, merge and split from step to step: pile_100 falling
-// onto the ground and the bone sliding into its pile.
+// onto the ground and the bone sliding into its pile. And the pool's rule for when a run is shared.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include "boxpile/sim/io/scene_loader.hpp"
+#include "boxpile/sim/thread_pool.hpp"
 #include "boxpile/sim/world.hpp"
 
 using namespace boxpile;
@@ -70,4 +72,33 @@ TEST_CASE("solver.threads 0 takes every core of the machine", "[threads]") {
   World world(scene_with_threads("stack_5", 0));
   CHECK(world.threads() == resolve_threads(0));
   CHECK(world.threads() >= 1);
+}
+
+TEST_CASE("the pool shares a run only when the other threads could take enough of it", "[threads]") {
+  ThreadPool pool(2);
+  CHECK(pool.size() == 2);
+  CHECK_FALSE(pool.shares(0.0));
+  CHECK_FALSE(pool.shares(ThreadPool::kMinSharedSeconds * 0.99));
+  CHECK(pool.shares(ThreadPool::kMinSharedSeconds));
+  CHECK_FALSE(ThreadPool(1).shares(1.0));  // no worker to share with
+
+  // Too little to share: the items run in order on the caller's thread, as worker 0.
+  std::vector<int> order, workers;
+  pool.run(5, [&](int item, int worker) {
+    order.push_back(item);
+    workers.push_back(worker);
+  }, 0.0);
+  CHECK(order == std::vector<int>{0, 1, 2, 3, 4});
+  CHECK(workers == std::vector<int>(5, 0));
+
+  // Shared: every item runs once, each on one of the pool's workers, and item 0 on the caller's.
+  constexpr int kItems = 1000;
+  std::vector<int> runs(kItems, 0), by(kItems, -1);
+  pool.run(kItems, [&](int item, int worker) {
+    ++runs[static_cast<std::size_t>(item)];
+    by[static_cast<std::size_t>(item)] = worker;
+  }, 1.0);
+  CHECK(std::count(runs.begin(), runs.end(), 1) == kItems);
+  CHECK(by[0] == 0);
+  CHECK(std::all_of(by.begin(), by.end(), [](int w) { return w == 0 || w == 1; }));
 }

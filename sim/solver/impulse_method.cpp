@@ -14,8 +14,9 @@ namespace boxpile {
 
 namespace {
 
-// The fewest contacts outside the largest island for which the islands are shared among threads.
-constexpr int kMinSharedContacts = 64;
+// What one contact costs a step's island stages on one thread, roughly (pile_100 and the heaps in
+// motion, AMD EPYC): how the pool judges whether the islands are worth sharing (ThreadPool::shares).
+constexpr double kContactStepSeconds = 0.5e-6;
 
 // What every contact of a pair of bodies shares: the penetration left alone (relative to the pair's
 // boxes) and the combined material.
@@ -63,17 +64,11 @@ void ImpulseMethod::for_each_island(StepContext& ctx, Stage&& stage) {
                      worker.stats};
     stage(step, islands_.begin(island), islands_.end(island), worker);
   };
-  // The caller's thread takes the largest island; the others can share only the rest. Below
-  // kMinSharedContacts of it, waking a worker costs more than it takes over (the bone scene's
-  // 48 contacts ran 15% slower on two threads): the islands run in turn on the caller's thread,
-  // with the same results, since a worker's results do not depend on which worker it is.
+  // The caller's thread takes the largest island; the others can share only the rest.
   const int count = islands_.count();
   const int largest = count > 0 ? islands_.end(islands_.by_size()[0]) - islands_.begin(islands_.by_size()[0]) : 0;
-  if (static_cast<int>(solver_contacts_.size()) - largest < kMinSharedContacts) {
-    for (int item = 0; item < count; ++item) run_item(item, 0);
-    return;
-  }
-  ctx.pool.run(count, run_item);
+  const int shareable = static_cast<int>(solver_contacts_.size()) - largest;
+  ctx.pool.run(count, run_item, shareable * kContactStepSeconds);
 }
 
 void ImpulseMethod::merge_workers() {
