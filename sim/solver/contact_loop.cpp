@@ -2,16 +2,25 @@
 
 #include <algorithm>
 #include <cassert>
+#include <vector>
 
 namespace boxpile {
 
-void contact_loop(ImpulseStep& step, std::span<SolverContact> contacts) {
+void contact_loop(ImpulseStep& step, std::span<SolverContact> contacts, ContactBatches* batches,
+                  BatchVelocities* velocities, std::vector<int>* order) {
   SolverBodyArray& sb = step.resting;
   const int passes = step.settings().contact_passes;
   const double dt = step.dt();
   const bool accumulated = step.settings().accumulated_impulses;
   assert(passes <= kMaxSolverPasses);
   for (SolverContact& c : contacts) begin_resting_phase(c, sb.relative_velocity(c));
+  // solver.contact_batches: the contacts in batches of four that share no moving body. With
+  // accumulated impulses a batch is updated at once, on the velocities (contact_batches.hpp); the
+  // push-only impulses take the batches' order one contact at a time.
+  const bool batched = batches != nullptr;
+  if (batched) batches->build(contacts, sb, dt, step.friction(), accumulated ? velocities : nullptr);
+  if (batched && !accumulated) batches->order(*order);
+  const bool avx2 = contact_batches_use_avx2();
   for (int pass = 0; pass < passes; ++pass) {
     // e = -1 would leave velocities unchanged; the ramp starts one step above it and ends at 0,
     // slowing resting contacts gradually instead of stopping the first one met at full force.
@@ -20,22 +29,29 @@ void contact_loop(ImpulseStep& step, std::span<SolverContact> contacts) {
     // The residual of a pass is the largest approach met in it, each contact measured just
     // before its impulse (free: the velocity is needed anyway).
     double residual = 0.0;
-    for (SolverContact& c : contacts) {
-      const Vec3 u = sb.relative_velocity(c);
-      residual = std::max(residual, allow_gap(c, 0.0, dt) - c.n.dot(u));
-      // Ours asks u_n >= -e_k u_n(start) of the impulse accumulated over the phase; the lab
-      // text's gives the push-only Newton-Coulomb impulse of restitution e_k on the present u_n
-      // (u_n >= -e_k u_n, a speculative point's gap allowed for as in ours).
-      const double approach_un = accumulated ? c.start_un : c.n.dot(u);
-      const double target = allow_gap(c, approach_un < 0.0 ? -e * approach_un : 0.0, dt);
-      const Vec3 j = accumulated ? resting_impulse(c, u, target, step.friction(), step.counters())
-                                 : push_impulse(c, u, target, step.friction(), step.counters());
-      if (!is_exact_zero(j)) sb.apply(c, j);  // a zero impulse would leave every velocity as it is
+    if (batched && accumulated) {
+      residual = batches->pass(*velocities, e, step.counters(), avx2);
+    } else {
+      const std::size_t count = contacts.size();
+      for (std::size_t q = 0; q < count; ++q) {
+        SolverContact& c = contacts[batched ? static_cast<std::size_t>((*order)[q]) : q];
+        const Vec3 u = sb.relative_velocity(c);
+        residual = std::max(residual, allow_gap(c, 0.0, dt) - c.n.dot(u));
+        // Ours asks u_n >= -e_k u_n(start) of the impulse accumulated over the phase; the lab
+        // text's gives the push-only Newton-Coulomb impulse of restitution e_k on the present u_n
+        // (u_n >= -e_k u_n, a speculative point's gap allowed for as in ours).
+        const double approach_un = accumulated ? c.start_un : c.n.dot(u);
+        const double target = allow_gap(c, approach_un < 0.0 ? -e * approach_un : 0.0, dt);
+        const Vec3 j = accumulated ? resting_impulse(c, u, target, step.friction(), step.counters())
+                                   : push_impulse(c, u, target, step.friction(), step.counters());
+        if (!is_exact_zero(j)) sb.apply(c, j);  // a zero impulse would leave every velocity as it is
+      }
     }
     // Islands run apart: the step's residual after a pass is the largest of theirs.
     step.stats().contact_residual[pass] = std::max(step.stats().contact_residual[pass], residual);
     step.stats().contact_passes_used = pass + 1;
   }
+  if (batched && accumulated) batches->finish(contacts);
 }
 
 }  // namespace boxpile

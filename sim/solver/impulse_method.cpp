@@ -18,6 +18,11 @@ namespace {
 // motion, AMD EPYC): how the pool judges whether the islands are worth sharing (ThreadPool::shares).
 constexpr double kContactStepSeconds = 0.5e-6;
 
+// The fewest contacts in a group of islands whose contact loop runs in batches
+// (solver.contact_batches): an island of one box on the ground fills one lane of each of its
+// four batches, a group of islands some 85% of the lanes (pile_100).
+constexpr int kGroupContacts = 64;
+
 // What every contact of a pair of bodies shares: the penetration left alone (relative to the pair's
 // boxes) and the combined material.
 struct PairTerms {
@@ -69,6 +74,34 @@ void ImpulseMethod::for_each_island(StepContext& ctx, Stage&& stage) {
   const int largest = count > 0 ? islands_.end(islands_.by_size()[0]) - islands_.begin(islands_.by_size()[0]) : 0;
   const int shareable = static_cast<int>(solver_contacts_.size()) - largest;
   ctx.pool.run(count, run_item, shareable * kContactStepSeconds);
+}
+
+template <class Stage>
+void ImpulseMethod::for_each_island_group(StepContext& ctx, Stage&& stage) {
+  assert(static_cast<std::size_t>(ctx.pool.size()) <= workers_.size());
+  // Consecutive islands joined until a group holds kGroupContacts: fixed by the islands alone, so
+  // the same whatever the number of threads.
+  group_end_.clear();
+  const int count = islands_.count();
+  int from = count > 0 ? islands_.begin(0) : 0, largest = 0;
+  for (int i = 0; i < count; ++i) {
+    const int end = islands_.end(i);
+    if (end - from >= kGroupContacts || i == count - 1) {
+      group_end_.push_back(end);
+      largest = std::max(largest, end - from);
+      from = end;
+    }
+  }
+  auto run_item = [&](int item, int w) {
+    const std::size_t g = static_cast<std::size_t>(item);
+    const int begin = g == 0 ? islands_.begin(0) : group_end_[g - 1];
+    Worker& worker = workers_[static_cast<std::size_t>(w)];
+    ImpulseStep step{ctx, SolverBodies{ctx.bodies, ctx.ground}, resting_bodies_, solver_contacts_, matrices_, worker.counters,
+                     worker.stats};
+    stage(step, begin, group_end_[g], worker);
+  };
+  const int shareable = static_cast<int>(solver_contacts_.size()) - largest;
+  ctx.pool.run(static_cast<int>(group_end_.size()), run_item, shareable * kContactStepSeconds);
 }
 
 void ImpulseMethod::merge_workers() {
@@ -131,7 +164,17 @@ void ImpulseMethod::step(StepContext& ctx) {
 
   // 4. Contact loop: every contact of the set, restitution ramped up to 0.
   resting_bodies_.gather(bodies);
-  for_each_island(ctx, [&](ImpulseStep& is, int begin, int end, Worker&) { contact_loop(is, contacts_of(is, begin, end)); });
+  if (s.contact_batches) {
+    // In batches (contact_batches.hpp), island group by island group; with accumulated impulses
+    // on the batches' own copy of the velocities.
+    if (s.accumulated_impulses) batch_velocities_.gather(resting_bodies_, static_cast<int>(bodies.size()));
+    for_each_island_group(ctx, [&](ImpulseStep& is, int begin, int end, Worker& w) {
+      contact_loop(is, contacts_of(is, begin, end), &w.batches, &batch_velocities_, &w.order);
+    });
+    if (s.accumulated_impulses) batch_velocities_.scatter(resting_bodies_, bodies);
+  } else {
+    for_each_island(ctx, [&](ImpulseStep& is, int begin, int end, Worker&) { contact_loop(is, contacts_of(is, begin, end)); });
+  }
   resting_bodies_.scatter(bodies);
   ++counters_.contact_loop_runs;
   enforce_wires(bodies, ctx.wires);
@@ -259,7 +302,7 @@ ContactMethodRow impulse_method_row() {
       {"boxpile", "ours, every addition on", [](Scene& s) { set_impulse_additions(s.solver, s.collision, true); }},
       {"lab",
        "the lab text's, every addition off: pair_impulses, accumulated_impulses, speculative_contacts, "
-       "sticking_solves, shock_propagation, reuse_contacts off, penetration_recovery 0, integrator explicit_euler",
+       "contact_batches, sticking_solves, shock_propagation, reuse_contacts off, penetration_recovery 0, integrator explicit_euler",
        [](Scene& s) { set_impulse_additions(s.solver, s.collision, false); }},
   };
   row.settings = {
@@ -281,6 +324,11 @@ ContactMethodRow impulse_method_row() {
         .what = "shock propagation: a group of a level whose touching points can all stick is solved "
                 "directly (least squares); off: every group by passes",
         .scene_key = "solver.sticking_solves"}),
+      scene_flag<&Scene::solver, &SolverSettings::contact_batches>({.key = "contact_batches", .kind = Kind::Boolean,
+        .what = "contact loop: the contacts regrouped into batches of four that share no moving body, a batch's "
+                "accumulated impulses computed at once (AVX2 where the processor has it, the same results "
+                "without); off: the contacts one at a time in the contact search's order",
+        .scene_key = "solver.contact_batches"}),
       {{.key = "collision_passes", .kind = Kind::Integer, .what = "passes of the collision loop", .min = 1,
         .max = kMaxSolverPasses, .scene_key = "solver.collision_passes"},
        [](S& s, const json& v) { s.solver.collision_passes = v.get<int>(); },

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "boxpile/sim/solver/contact_batches.hpp"
 #include "boxpile/sim/solver/contact_method.hpp"
 #include "boxpile/sim/solver/impulse.hpp"
 #include "boxpile/sim/solver/impulse_step.hpp"
@@ -48,11 +49,17 @@ class ImpulseMethod final : public ContactMethod {
     ImpulseStepStats stats;
     ShockPropagation::Worker shock;
     PenetrationRecovery::Worker recovery;
+    ContactBatches batches;  // the contact loop's (solver.contact_batches)
+    std::vector<int> order;
   };
   // Runs stage(step, begin, end, worker) for every island [begin, end) of the contact set, on the
   // pool's threads; `step` is the worker's view of the step (its own counts and records).
   template <class Stage>
   void for_each_island(StepContext& ctx, Stage&& stage);
+  // The same over groups of consecutive islands of at least kGroupContacts contacts (the last may
+  // hold fewer), for the contact loop's batches.
+  template <class Stage>
+  void for_each_island_group(StepContext& ctx, Stage&& stage);
   // The workers' counts and records, added into the method's and the step's (sums and maxima:
   // the same whichever worker solved which island).
   void merge_workers();
@@ -74,6 +81,8 @@ class ImpulseMethod final : public ContactMethod {
   // its index): shock propagation then keeps its levels and groups.
   bool same_set_ = false;
   SolverBodyArray resting_bodies_;  // the resting phases' compact bodies
+  BatchVelocities batch_velocities_;  // the contact loop's, in batches (solver.contact_batches)
+  std::vector<int> group_end_;        // for_each_island_group's groups: where each ends
   ShockPropagation shock_;
   PenetrationRecovery recovery_;
   std::vector<Vec3> start_v_, start_omega_;  // velocities at the step's start (explicit Euler)
