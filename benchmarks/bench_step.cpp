@@ -12,8 +12,9 @@
 //                 with our per-stage profile as counters stage_*), a 4 x 4 x 4
 //                 cube of boxes rammed by a 40 kg box (2 s), and heaps of 300 and 1,000 randomly
 //                 sized and turned boxes falling in layers onto the ground (3 s), built in code
-//                 (generated_scenes.hpp); ours also as own_threads_2 (solver.threads 2, timed by
-//                 the wall clock: the CPU time counts the calling thread alone).
+//                 (generated_scenes.hpp); ours also as own_batches (solver.contact_batches: the
+//                 contact loop four contacts at a time) and own_threads_2 (solver.threads 2, timed
+//                 by the wall clock: the CPU time counts the calling thread alone).
 //   step_scaling  square pyramids of base 4, 6, 8, 10, 14, 20 and 30 (30 to 9,455 boxes), the
 //                 first 60 steps (0.25 s): cost against the number of contacts, for the log-log
 //                 plot of docs/performance.md (scripts/plot-scaling), with our per-stage profile.
@@ -206,6 +207,11 @@ const bool registered = [] {
                                    whole(scene), nlohmann::json::object())
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
+    // Ours with the contact loop in batches of four (solver.contact_batches), one thread.
+    benchmark::RegisterBenchmark(("step_moving/" + name + "/own_batches").c_str(), step_profiled, scene,
+                                 std::string("own"), whole(scene), nlohmann::json{{"contact_batches", true}})
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
     // Ours on two threads (`own` above: one), timed by the wall clock, per_step included.
     benchmark::RegisterBenchmark(("step_moving/" + name + "/own_threads_2").c_str(), step_profiled, scene,
                                  std::string("own"), whole(scene), nlohmann::json{{"threads", 2}})

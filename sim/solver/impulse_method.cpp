@@ -302,7 +302,7 @@ ContactMethodRow impulse_method_row() {
       {"boxpile", "ours, every addition on", [](Scene& s) { set_impulse_additions(s.solver, s.collision, true); }},
       {"lab",
        "the lab text's, every addition off: pair_impulses, accumulated_impulses, speculative_contacts, "
-       "contact_batches, sticking_solves, shock_propagation, reuse_contacts off, penetration_recovery 0, integrator explicit_euler",
+       "sticking_solves, shock_propagation, reuse_contacts off, penetration_recovery 0, integrator explicit_euler",
        [](Scene& s) { set_impulse_additions(s.solver, s.collision, false); }},
   };
   row.settings = {
@@ -326,8 +326,9 @@ ContactMethodRow impulse_method_row() {
         .scene_key = "solver.sticking_solves"}),
       scene_flag<&Scene::solver, &SolverSettings::contact_batches>({.key = "contact_batches", .kind = Kind::Boolean,
         .what = "contact loop: the contacts regrouped into batches of four that share no moving body, a batch's "
-                "accumulated impulses computed at once (AVX2 where the processor has it, the same results "
-                "without); off: the contacts one at a time in the contact search's order",
+                "accumulated impulses computed at once on the velocities (AVX2 where the processor has it, the "
+                "same results without; push-only impulses take the batches' order); off: one contact at a time "
+                "in the contact search's order",
         .scene_key = "solver.contact_batches"}),
       {{.key = "collision_passes", .kind = Kind::Integer, .what = "passes of the collision loop", .min = 1,
         .max = kMaxSolverPasses, .scene_key = "solver.collision_passes"},
