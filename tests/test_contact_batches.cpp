@@ -1,7 +1,7 @@
 // The contact loop's batches (solver.contact_batches): four lanes give what each contact's update
-// alone gives, to the bit, on AVX2 and on the baseline's code alike; the impulses are the
-// sequential loop's in the same order, to rounding; no batch holds a moving body twice; and scenes
-// solved in batches settle as they do one contact at a time.
+// alone gives in the search's order, to the bit, on AVX2 and on the baseline's code alike; the
+// impulses are the sequential loop's, to rounding; no batch holds a moving body twice and each body
+// meets its contacts in order; and scenes follow the sequential loop's trajectories to rounding.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -171,7 +171,7 @@ bool same_velocities(const BatchVelocities& x, const BatchVelocities& y, int bod
 
 }  // namespace
 
-TEST_CASE("contact batches: four lanes give each contact's update alone, to the bit, on AVX2 and without",
+TEST_CASE("contact batches: four lanes give each contact's update alone in the search's order, to the bit, on AVX2 and without",
           "[batches]") {
   constexpr double dt = 1.0 / 240.0;
   constexpr int kPasses = 10;
@@ -197,7 +197,12 @@ TEST_CASE("contact batches: four lanes give each contact's update alone, to the 
       for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
       REQUIRE(sorted == all);
 
-      // The oracle: each contact alone, in the batches' order.
+      // The oracle: each contact alone, in the search's order (the batches keep it for every body).
+      std::vector<std::pair<int, int>> where(t.contacts.size());  // contact -> (batch, lane)
+      for (std::size_t b = 0; b < batches.all().size(); ++b)
+        for (int l = 0; l < kBatchLanes; ++l)
+          if (batches.all()[b].contact[l] >= 0)
+            where[static_cast<std::size_t>(batches.all()[b].contact[l])] = {static_cast<int>(b), l};
       BatchVelocities ref = start_velocities;
       std::vector<ContactBatch> ref_batches(batches.all().begin(), batches.all().end());
       ImpulseCounters ref_counters;
@@ -205,9 +210,8 @@ TEST_CASE("contact batches: four lanes give each contact's update alone, to the 
       for (int pass = 0; pass < kPasses; ++pass) {
         const double e = -1.0 + static_cast<double>(pass + 1) / kPasses;
         double residual = 0.0;
-        for (ContactBatch& batch : ref_batches)
-          for (int l = 0; l < kBatchLanes; ++l)
-            if (batch.contact[l] >= 0) residual = std::max(residual, reference_update(batch, l, ref, e, ref_counters));
+        for (const auto& [b, l] : where)
+          residual = std::max(residual, reference_update(ref_batches[static_cast<std::size_t>(b)], l, ref, e, ref_counters));
         ref_residual.push_back(residual);
       }
       CHECK(ref_counters.normal_impulses == static_cast<std::uint64_t>(kPasses) * t.contacts.size());
@@ -259,8 +263,8 @@ TEST_CASE("contact batches: the same impulses as the sequential loop in the same
     velocities.gather(start, bodies);
     ContactBatches batches;
     batches.build(t.contacts, start, dt, true, &velocities);
-    std::vector<int> order;
-    batches.order(order);
+    std::vector<int> order(t.contacts.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);  // the search's
 
     SolverBodyArray seq = start;
     std::vector<SolverContact> seq_contacts = t.contacts;
@@ -300,19 +304,23 @@ TEST_CASE("contact batches: the same impulses as the sequential loop in the same
   }
 }
 
-TEST_CASE("contact batches: no batch holds a moving body twice, and the lanes fill", "[batches]") {
+TEST_CASE("contact batches: no batch holds a moving body twice, and each body meets its contacts in order",
+          "[batches]") {
   Tangle t = make_tangle(7, 12, 200);
   SolverBodyArray sb;
   sb.gather(t.bodies);
   for (SolverContact& c : t.contacts) begin_resting_phase(c, sb.relative_velocity(c));
   ContactBatches batches;
   batches.build(t.contacts, sb, 1.0 / 240.0, true, nullptr);
+  std::vector<int> batch_of(t.contacts.size(), -1);
   int filled = 0;
-  for (const ContactBatch& batch : batches.all()) {
+  for (std::size_t k = 0; k < batches.all().size(); ++k) {
+    const ContactBatch& batch = batches.all()[k];
     std::vector<int> moving;
     for (int l = 0; l < kBatchLanes; ++l) {
       if (batch.contact[l] < 0) continue;
       ++filled;
+      batch_of[static_cast<std::size_t>(batch.contact[l])] = static_cast<int>(k);
       if (batch.push_a[l]) moving.push_back(batch.a[l]);
       if (batch.push_b[l]) moving.push_back(batch.b[l]);
     }
@@ -320,40 +328,47 @@ TEST_CASE("contact batches: no batch holds a moving body twice, and the lanes fi
     CHECK(std::adjacent_find(moving.begin(), moving.end()) == moving.end());
   }
   CHECK(filled == 200);
-  // 11 moving boxes, two to a contact: at most 5 contacts can share a batch's 4 lanes, so the
-  // greedy regrouping fills most lanes (a quarter empty at most, on this tangle).
-  CHECK(filled >= 3 * kBatchLanes * batches.batches() / 4);
+  // A moving body's contacts are in batches that follow one another as the contacts do.
+  for (std::size_t body = 0; body + 1 < t.bodies.size(); ++body) {
+    int last = -1;
+    bool in_order = true;
+    for (std::size_t i = 0; i < t.contacts.size(); ++i) {
+      const SolverContact& c = t.contacts[i];
+      if (c.a != static_cast<int>(body) && c.b != static_cast<int>(body)) continue;
+      in_order = in_order && batch_of[i] > last;
+      last = batch_of[i];
+    }
+    CHECK(in_order);
+  }
+  // 11 moving boxes, two to most contacts: at most 5 contacts can share a batch, and chains of
+  // contacts through one body leave lanes empty; on this tangle two thirds of the lanes fill.
+  CHECK(3 * filled >= 2 * kBatchLanes * batches.batches());
 }
 
-TEST_CASE("contact batches: a resting stack and a falling pile settle as they do one contact at a time", "[batches]") {
-  for (const char* name : {"stack_10", "pile_100"}) {
-    CAPTURE(name);
-    Scene one = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + name + ".json");
+TEST_CASE("contact batches: scenes follow the sequential loop's trajectory, to rounding", "[batches]") {
+  // The same impulses in the same order for every body, rounded differently (velocities updated
+  // directly, not through the momenta): a resting stack and the bone scene agree for their whole
+  // run; pile_100's fall is chaotic once its boxes pile up, so it is compared over its first 150
+  // steps (0.6 s, the first impacts), where the difference measured 1.1e-9 m.
+  struct Case {
+    const char* name;
+    int steps;
+    double tolerance;  // m, the largest difference of a body's centre allowed
+  };
+  for (const Case& k : {Case{"stack_10", 1200, 1e-15}, Case{"bone_hits_pile", 1200, 1e-8}, Case{"pile_100", 150, 1e-8}}) {
+    CAPTURE(k.name);
+    Scene one = load_scene(std::string(BOXPILE_FIXTURES_DIR) + "/scenes/" + k.name + ".json");
     Scene batched = one;
     batched.solver.contact_batches = true;
     World a(one), b(batched);
-    const std::vector<RigidBody> start = b.bodies();
-    const int steps = static_cast<int>(std::lround(std::min(one.time.duration, 3.0) / one.time.dt));
-    for (int i = 0; i < steps; ++i) {
+    double worst = 0.0;
+    for (int i = 0; i < k.steps; ++i) {
       a.step();
       b.step();
+      for (std::size_t j = 0; j < a.bodies().size(); ++j)
+        worst = std::max(worst, (a.bodies()[j].x - b.bodies()[j].x).norm());
     }
-    double highest_a = 0.0, highest_b = 0.0;
-    for (std::size_t i = 0; i < a.bodies().size(); ++i) {
-      highest_a = std::max(highest_a, a.bodies()[i].x.z());
-      highest_b = std::max(highest_b, b.bodies()[i].x.z());
-    }
-    if (std::string(name) == "stack_10") {
-      // At rest, the stack stays where it was put, to well within the contact margin (1 mm).
-      for (std::size_t i = 0; i < start.size(); ++i) CHECK(std::abs(b.bodies()[i].x.z() - start[i].x.z()) < 1e-5);
-    } else {
-      // The pile's fall is chaotic: its highest box lands elsewhere, on a pile of the same height
-      // within a box's edge (0.2-0.3 m).
-      CHECK(std::abs(highest_b - highest_a) < 0.3);
-    }
-    const double deepest_a = measure_penetration(a.bodies(), one.ground).depth;
-    const double deepest_b = measure_penetration(b.bodies(), batched.ground).depth;
-    CHECK(deepest_b < std::max(2.0 * deepest_a, 1e-4));
-    CHECK(measure_energy(b.bodies(), batched.gravity).kinetic() < 0.5);
+    CHECK(worst <= k.tolerance);
+    CHECK(b.method_diagnostics()["contact_passes"] == a.method_diagnostics()["contact_passes"]);
   }
 }

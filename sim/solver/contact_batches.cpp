@@ -1,5 +1,6 @@
 #include "boxpile/sim/solver/contact_batches.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -11,10 +12,6 @@
 namespace boxpile {
 
 namespace {
-
-// The last few open batches a contact may join: more finds fuller batches for scenes with many
-// contacts per body, at a cost per contact of one look at each.
-constexpr std::size_t kOpenBatches = 4;
 
 using d4 = double __attribute__((vector_size(32)));
 using i4 = std::int64_t __attribute__((vector_size(32)));
@@ -299,53 +296,38 @@ void BatchVelocities::scatter(SolverBodyArray& sb, const std::vector<RigidBody>&
 void ContactBatches::build(std::span<const SolverContact> contacts, const SolverBodyArray& sb, double dt,
                            bool friction, BatchVelocities* velocities) {
   // The batches of earlier steps are reused (every field of a lane is written): no allocation
-  // once the vector has grown, and no clearing of the 2.5 kB of a batch.
+  // once the vectors have grown, and no clearing of the 2.5 kB of a batch.
   used_ = 0;
-  auto add_batch = [&] {
-    if (used_ == batches_.size()) batches_.emplace_back();
-    return used_++;
-  };
-  // Each open batch's moving bodies, kept beside it.
-  struct Open {
-    std::size_t batch;
-    int lanes;
-    int bodies;
-    int body[2 * kBatchLanes];
-  };
-  Open open[kOpenBatches];
-  std::size_t open_count = 0;
-  auto moving = [&](int body) { return body != kGround && sb.state(body).inv_mass != 0.0 ? body : kGround; };
-  auto close = [&](std::size_t k) {
-    for (int l = open[k].lanes; l < kBatchLanes; ++l) empty_lane(batches_[open[k].batch], l);
-    for (std::size_t q = k + 1; q < open_count; ++q) open[q - 1] = open[q];
-    --open_count;
-  };
+  lanes_.clear();
+  if (after_.size() < sb.size()) after_.assign(sb.size(), 0);
+  std::size_t first_free = 0;  // no batch before it has a free lane
+  auto moving = [&](int body) { return body != kGround && sb.state(body).inv_mass != 0.0; };
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const SolverContact& c = contacts[i];
-    const int a = moving(c.a), b = moving(c.b);
-    if (velocities != nullptr && a != kGround) velocities->touch(a);
-    if (velocities != nullptr && b != kGround) velocities->touch(b);
-    std::size_t k = 0;
-    for (; k < open_count; ++k) {
-      bool clash = false;
-      for (int q = 0; q < open[k].bodies; ++q)
-        clash |= (a != kGround && open[k].body[q] == a) || (b != kGround && open[k].body[q] == b);
-      if (!clash) break;
+    const bool a_moves = moving(c.a), b_moves = moving(c.b);
+    // The first batch after every batch that holds one of its moving bodies, with a free lane.
+    std::size_t k = std::max({a_moves ? after_[static_cast<std::size_t>(c.a + 1)] : std::size_t{0},
+                              b_moves ? after_[static_cast<std::size_t>(c.b + 1)] : std::size_t{0}, first_free});
+    while (k < used_ && lanes_[k] == kBatchLanes) ++k;
+    if (k == used_) {
+      if (used_ == batches_.size()) batches_.emplace_back();
+      lanes_.push_back(0);
+      ++used_;
     }
-    if (k == open_count) {
-      if (open_count == kOpenBatches) {
-        close(0);
-        k = open_count;
-      }
-      open[open_count++] = {add_batch(), 0, 0, {}};
-    }
-    Open& o = open[k];
-    fill_lane(batches_[o.batch], o.lanes++, static_cast<int>(i), c, sb, dt, friction);
-    if (a != kGround) o.body[o.bodies++] = a;
-    if (b != kGround) o.body[o.bodies++] = b;
-    if (o.lanes == kBatchLanes) close(k);
+    fill_lane(batches_[k], lanes_[k]++, static_cast<int>(i), c, sb, dt, friction);
+    while (first_free < used_ && lanes_[first_free] == kBatchLanes) ++first_free;
+    if (a_moves) after_[static_cast<std::size_t>(c.a + 1)] = k + 1;
+    if (b_moves) after_[static_cast<std::size_t>(c.b + 1)] = k + 1;
+    if (velocities != nullptr && a_moves) velocities->touch(c.a);
+    if (velocities != nullptr && b_moves) velocities->touch(c.b);
   }
-  while (open_count > 0) close(0);
+  for (std::size_t k = 0; k < used_; ++k)
+    for (int l = lanes_[k]; l < kBatchLanes; ++l) empty_lane(batches_[k], l);
+  // Cleared for the next group: only the bodies of this one were set.
+  for (const SolverContact& c : contacts) {
+    after_[static_cast<std::size_t>(c.a + 1)] = 0;
+    after_[static_cast<std::size_t>(c.b + 1)] = 0;
+  }
 }
 
 double ContactBatches::pass(BatchVelocities& velocities, double e, ImpulseCounters& counters, bool avx2) {

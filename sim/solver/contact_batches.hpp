@@ -1,10 +1,11 @@
 // The contact loop four contacts at a time (solver.contact_batches).
 //
-// The contacts of a group of islands are regrouped, in the search's order as far as it allows,
-// into batches of kBatchLanes contacts that share no moving body (greedily: a contact joins the
-// first of the last few open batches that holds neither of its moving bodies). The contacts of a
-// batch touch different bodies, so updating them at once is a Gauss-Seidel sweep over the
-// contacts in the batches' order, with four updates in flight instead of one chain.
+// The contacts of a group of islands are regrouped into batches of kBatchLanes contacts that
+// share no moving body: each contact, in the search's order, joins the first batch with a free
+// lane after every batch that holds one of its moving bodies. So each body still meets its
+// contacts in the search's order, and the batches' sweep is the sequential sweep in that order
+// (only contacts that share no body trade places, which changes nothing), with four updates in
+// flight instead of one chain.
 //
 // The update is the contact loop's projected Gauss-Seidel step on the impulse accumulated over
 // the phase (resting_impulse's, without its shortcuts, which only skip work), applied to the
@@ -102,6 +103,8 @@ class ContactBatches {
  private:
   std::vector<ContactBatch> batches_;  // the first used_ hold this phase's batches
   std::size_t used_ = 0;
+  std::vector<int> lanes_;             // lanes filled, per batch
+  std::vector<std::size_t> after_;     // per body slot: 1 + the last batch holding it (0: none yet)
 };
 
 // Whether this processor runs AVX2 (the contact loop's batches then use it).

@@ -26,6 +26,8 @@ struct SolverBody {
 class SolverBodyArray {
  public:
   void reserve(std::size_t bodies) { body_.reserve(bodies + 1); }
+  // Slots: the bodies and the ground's.
+  std::size_t size() const { return body_.size(); }
   // Copies each body's velocities and inverse mass properties; slot 0 is the ground.
   void gather(const std::vector<RigidBody>& bodies);
   // Writes the velocities back, with the momenta they imply (P = m v, L = I omega), to every
