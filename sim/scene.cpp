@@ -27,6 +27,7 @@ void set_impulse_additions(SolverSettings& solver, CollisionSettings& collision,
   solver.accumulated_impulses = on;
   solver.speculative_contacts = on;
   solver.sticking_solves = on;
+  solver.contact_batches = on;
   solver.shock_propagation = on;  // the lab text's bonus: a switch of its own
   solver.penetration_recovery = on ? ours.penetration_recovery : 0.0;
   solver.integrator = on ? ours.integrator : PositionIntegrator::ExplicitEuler;

@@ -78,7 +78,7 @@ struct SolverSettings {
   bool accumulated_impulses = true;  // resting phases: projected Gauss-Seidel (off: push-only impulses)
   bool speculative_contacts = true;  // points up to a margin apart are contacts (off: touching points only)
   bool sticking_solves = true;       // shock propagation solves groups that stick directly (off: passes only)
-  bool contact_batches = false;      // contact loop: batches of four sharing no moving body (off: one by one)
+  bool contact_batches = true;       // contact loop: batches of four sharing no moving body (off: one by one)
   int collision_passes = 5;       // GBF collision loop passes (5-10)
   int contact_passes = 10;        // GBF contact loop passes, restitution ramped -0.9 -> 0 (10-20)
   bool shock_propagation = true;  // GBF shock propagation after the contact loop

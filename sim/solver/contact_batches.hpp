@@ -42,6 +42,10 @@ struct alignas(64) BatchVelocity {
 // batches write only its own bodies.
 class BatchVelocities {
  public:
+  void reserve(std::size_t bodies) {
+    velocity_.reserve(bodies + 1);
+    touched_.reserve(bodies + 1);
+  }
   // Copies the velocities of `sb` (bodies 0 .. count - 1 and the ground) and marks every body
   // untouched.
   void gather(const SolverBodyArray& sb, int count);
@@ -82,6 +86,12 @@ struct alignas(32) ContactBatch {
 
 class ContactBatches {
  public:
+  // Room for `batches` batches among `bodies` bodies, so that building them allocates nothing.
+  void reserve(std::size_t batches, std::size_t bodies) {
+    batches_.reserve(batches);
+    lanes_.reserve(batches);
+    after_.assign(bodies + 1, 0);
+  }
   // Regroups `contacts` (whose resting phase has begun: start_un, slide_dir, accumulated set) into
   // batches, reading the bodies' inverse masses and inertias from `sb`, and marks their moving
   // bodies touched in `velocities` (when given: the passes will update them).

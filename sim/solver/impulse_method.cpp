@@ -53,9 +53,14 @@ ImpulseMethod::ImpulseMethod(const Scene& scene, std::size_t body_count)
   recovery_.reserve(storage);
   // One per thread of the world's pool, which has resolve_threads(solver.threads).
   workers_.resize(static_cast<std::size_t>(resolve_threads(scene.solver.threads)));
+  batch_velocities_.reserve(body_count);
+  group_end_.reserve(storage.contacts());
   for (Worker& w : workers_) {
     w.shock.active.reserve(body_count);
     w.recovery.reserve(storage);
+    // A batch per four contacts: batches that fill fewer lanes grow the storage once.
+    w.batches.reserve(storage.contacts() / kBatchLanes, body_count);
+    w.order.reserve(storage.contacts());
   }
 }
 
@@ -302,7 +307,7 @@ ContactMethodRow impulse_method_row() {
       {"boxpile", "ours, every addition on", [](Scene& s) { set_impulse_additions(s.solver, s.collision, true); }},
       {"lab",
        "the lab text's, every addition off: pair_impulses, accumulated_impulses, speculative_contacts, "
-       "sticking_solves, shock_propagation, reuse_contacts off, penetration_recovery 0, integrator explicit_euler",
+       "sticking_solves, contact_batches, shock_propagation, reuse_contacts off, penetration_recovery 0, integrator explicit_euler",
        [](Scene& s) { set_impulse_additions(s.solver, s.collision, false); }},
   };
   row.settings = {
