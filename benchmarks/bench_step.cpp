@@ -7,14 +7,15 @@
 //                 defaults without shock propagation and penetration recovery): what the method
 //                 the lab text prescribes costs before anything of ours is added.
 //   step_hard     the hard catalogue's square pyramids of base 6 and 10 and the Jenga tower
-//                 (generated_scenes.hpp), through the catalogue's durations (3 s, 1.5 s, 5 s).
+//                 (generated_scenes.hpp), through the catalogue's durations (3 s, 1.5 s, 5 s);
+//                 ours also as own_sequential (solver.contact_batches off).
 //   step_moving   scenes in motion: pile_100 and the bone scene (fixtures/scenes, their whole 5 s,
 //                 with our per-stage profile as counters stage_*), a 4 x 4 x 4
 //                 cube of boxes rammed by a 40 kg box (2 s), and heaps of 300 and 1,000 randomly
 //                 sized and turned boxes falling in layers onto the ground (3 s), built in code
-//                 (generated_scenes.hpp); ours also as own_batches (solver.contact_batches: the
-//                 contact loop four contacts at a time) and own_threads_2 (solver.threads 2, timed
-//                 by the wall clock: the CPU time counts the calling thread alone).
+//                 (generated_scenes.hpp); ours also as own_sequential (solver.contact_batches off:
+//                 the contact loop one contact at a time) and own_threads_2 (solver.threads 2,
+//                 timed by the wall clock: the CPU time counts the calling thread alone).
 //   step_scaling  square pyramids of base 4, 6, 8, 10, 14, 20 and 30 (30 to 9,455 boxes), the
 //                 first 60 steps (0.25 s): cost against the number of contacts, for the log-log
 //                 plot of docs/performance.md (scripts/plot-scaling), with our per-stage profile.
@@ -188,12 +189,19 @@ const bool registered = [] {
       {"pyramid_10", bench::square_pyramid(10, kPyramid10Duration)},
       {"jenga", bench::jenga_tower(kJengaDuration)},
   };
-  for (const auto& [name, scene] : hard)
+  for (const auto& [name, scene] : hard) {
     for (const std::string& engine : kEngines)
       benchmark::RegisterBenchmark(("step_hard/" + name + "/" + engine).c_str(), step_generated, scene,
                                    engine, whole(scene))
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
+    Scene sequential = scene;
+    sequential.solver.contact_batches = false;
+    benchmark::RegisterBenchmark(("step_hard/" + name + "/own_sequential").c_str(), step_generated, sequential,
+                                 std::string("own"), whole(scene))
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
+  }
   const std::vector<std::pair<std::string, Scene>> moving = {
       {"pile_100", fixture_scene("pile_100")},
       {"bone_hits_pile", fixture_scene("bone_hits_pile")},
@@ -207,9 +215,10 @@ const bool registered = [] {
                                    whole(scene), nlohmann::json::object())
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
-    // Ours with the contact loop in batches of four (solver.contact_batches), one thread.
-    benchmark::RegisterBenchmark(("step_moving/" + name + "/own_batches").c_str(), step_profiled, scene,
-                                 std::string("own"), whole(scene), nlohmann::json{{"contact_batches", true}})
+    // Ours with the contact loop one contact at a time (solver.contact_batches off), one thread:
+    // what the batches buy.
+    benchmark::RegisterBenchmark(("step_moving/" + name + "/own_sequential").c_str(), step_profiled, scene,
+                                 std::string("own"), whole(scene), nlohmann::json{{"contact_batches", false}})
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1);
     // Ours on two threads (`own` above: one), timed by the wall clock, per_step included.
