@@ -5,8 +5,8 @@
 #include <cstring>
 #include <limits>
 
-// The four-lane vectors are passed between inlined helpers only; GCC notes that passing them by
-// value to a function compiled without AVX would change the calling convention.
+// The four-lane vectors are passed between inlined helpers only; GCC and Clang note that passing
+// them by value to a function compiled without AVX would change the calling convention.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace boxpile {
@@ -33,13 +33,18 @@ struct V3 {
 [[gnu::always_inline]] inline void store(double* p, d4 v) { std::memcpy(p, &v, sizeof v); }
 [[gnu::always_inline]] inline V3 load3(const double (*p)[kBatchLanes]) { return {load(p[0]), load(p[1]), load(p[2])}; }
 [[gnu::always_inline]] inline d4 splat(double x) { return d4{x, x, x, x}; }
-[[gnu::always_inline]] inline d4 select(i4 m, d4 a, d4 b) { return m ? a : b; }
+// Lane by lane, a where m is all ones, b where it is zero (m a comparison's result).
+[[gnu::always_inline]] inline d4 select(i4 m, d4 a, d4 b) { return (d4)((m & (i4)a) | (~m & (i4)b)); }
 [[gnu::always_inline]] inline V3 select(i4 m, const V3& a, const V3& b) {
   return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
 }
+// Comparisons, lane by lane, as masks (cast: GCC and Clang name the result's element type apart).
+[[gnu::always_inline]] inline i4 lt(d4 a, d4 b) { return (i4)(a < b); }
+[[gnu::always_inline]] inline i4 le(d4 a, d4 b) { return (i4)(a <= b); }
+[[gnu::always_inline]] inline i4 eq(d4 a, d4 b) { return (i4)(a == b); }
 // std::max(a, b) and std::min(a, b), lane by lane.
-[[gnu::always_inline]] inline d4 max(d4 a, d4 b) { return select(a < b, b, a); }
-[[gnu::always_inline]] inline d4 min(d4 a, d4 b) { return select(b < a, b, a); }
+[[gnu::always_inline]] inline d4 max(d4 a, d4 b) { return select(lt(a, b), b, a); }
+[[gnu::always_inline]] inline d4 min(d4 a, d4 b) { return select(lt(b, a), b, a); }
 [[gnu::always_inline]] inline d4 dot(const V3& a, const V3& b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
 [[gnu::always_inline]] inline V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 [[gnu::always_inline]] inline V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
@@ -63,12 +68,12 @@ struct V3 {
 // Rows r0..r3 (four values of one body each) to columns (one value of the four bodies each); its
 // own inverse.
 [[gnu::always_inline]] inline void transpose(d4& r0, d4& r1, d4& r2, d4& r3) {
-  const d4 t0 = __builtin_shuffle(r0, r1, i4{0, 4, 2, 6}), t1 = __builtin_shuffle(r0, r1, i4{1, 5, 3, 7});
-  const d4 t2 = __builtin_shuffle(r2, r3, i4{0, 4, 2, 6}), t3 = __builtin_shuffle(r2, r3, i4{1, 5, 3, 7});
-  r0 = __builtin_shuffle(t0, t2, i4{0, 1, 4, 5});
-  r1 = __builtin_shuffle(t1, t3, i4{0, 1, 4, 5});
-  r2 = __builtin_shuffle(t0, t2, i4{2, 3, 6, 7});
-  r3 = __builtin_shuffle(t1, t3, i4{2, 3, 6, 7});
+  const d4 t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6), t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
+  const d4 t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6), t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+  r0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  r1 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  r2 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  r3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
 
 // Four bodies' velocities, lane by lane.
@@ -122,7 +127,7 @@ static_assert(sizeof(BatchVelocity) == 2 * sizeof(d4));
     residual = max(residual, select(real, min(zero, gap_speed) - un, zero));
     // The target: allow_gap(c, -e u_n(start) or 0, dt).
     const d4 start_un = load(c.start_un);
-    const d4 target = min(select(start_un < zero, splat(-e) * start_un, zero), gap_speed);
+    const d4 target = min(select(lt(start_un, zero), splat(-e) * start_un, zero), gap_speed);
 
     const V3 J_old = load3(c.acc);
     const V3 rhs = target * n - u;
@@ -132,7 +137,7 @@ static_assert(sizeof(BatchVelocity) == 2 * sizeof(d4));
     const V3 jt = J_stick - jn * n;
     const d4 mu = load(c.friction);
     const d4 limit = mu * jn;
-    const i4 sticks = (jn >= zero) & (dot(jt, jt) <= limit * limit);
+    const i4 sticks = le(zero, jn) & le(dot(jt, jt), limit * limit);
     V3 J = J_stick;
     const i4 slides = frictional & ~sticks;
     if (any(slides)) {
@@ -152,7 +157,7 @@ static_assert(sizeof(BatchVelocity) == 2 * sizeof(d4));
       // Sliding along the phase's direction t: J = J_n (n - mu t), J_n set by the target.
       const d4 denom = load(c.denom);
       const d4 jn_slide =
-          select(denom > zero, max(zero, ((target - un) + dot(load3(c.Kn), J_old)) / denom), zero);
+          select(lt(zero, denom), max(zero, ((target - un) + dot(load3(c.Kn), J_old)) / denom), zero);
       const V3 J_slide = jn_slide * load3(c.dir);
       J = select(sticks, J_stick, select(slide_zero, J_radial, J_slide));
     }
@@ -171,7 +176,7 @@ static_assert(sizeof(BatchVelocity) == 2 * sizeof(d4));
     sliding += slides;
 
     const V3 j = J - J_old;
-    const i4 nonzero = ~((j.x == zero) & (j.y == zero) & (j.z == zero));
+    const i4 nonzero = ~(eq(j.x, zero) & eq(j.y, zero) & eq(j.z, zero));
     if (!any(nonzero)) continue;
     const d4 ma = load(c.ma), mb = load(c.mb);
     A.v = A.v + ma * j;
@@ -294,44 +299,60 @@ void BatchVelocities::scatter(SolverBodyArray& sb, const std::vector<RigidBody>&
 }
 
 void ContactBatches::build(std::span<const SolverContact> contacts, const SolverBodyArray& sb, double dt,
-                           bool friction, BatchVelocities* velocities) {
-  // The batches of earlier steps are reused (every field of a lane is written): no allocation
-  // once the vectors have grown, and no clearing of the 2.5 kB of a batch.
+                           bool friction, bool fill_always) {
+  // Each contact's batch and lane first; the lanes are filled only when the batches pay. The
+  // batches of earlier steps are reused (every field of a lane is written): no allocation once the
+  // vectors have grown, and no clearing of the 2 kB of a batch.
   used_ = 0;
+  filled_ = false;
+  contacts_ = contacts.size();
   lanes_.clear();
+  slot_.clear();
   if (after_.size() < sb.size()) after_.assign(sb.size(), 0);
   std::size_t first_free = 0;  // no batch before it has a free lane
   auto moving = [&](int body) { return body != kGround && sb.state(body).inv_mass != 0.0; };
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const SolverContact& c = contacts[i];
+  for (const SolverContact& c : contacts) {
     const bool a_moves = moving(c.a), b_moves = moving(c.b);
     // The first batch after every batch that holds one of its moving bodies, with a free lane.
     std::size_t k = std::max({a_moves ? after_[static_cast<std::size_t>(c.a + 1)] : std::size_t{0},
                               b_moves ? after_[static_cast<std::size_t>(c.b + 1)] : std::size_t{0}, first_free});
     while (k < used_ && lanes_[k] == kBatchLanes) ++k;
     if (k == used_) {
-      if (used_ == batches_.size()) batches_.emplace_back();
       lanes_.push_back(0);
       ++used_;
     }
-    fill_lane(batches_[k], lanes_[k]++, static_cast<int>(i), c, sb, dt, friction);
+    slot_.push_back(static_cast<int>(k) * kBatchLanes + lanes_[k]++);
     while (first_free < used_ && lanes_[first_free] == kBatchLanes) ++first_free;
     if (a_moves) after_[static_cast<std::size_t>(c.a + 1)] = k + 1;
     if (b_moves) after_[static_cast<std::size_t>(c.b + 1)] = k + 1;
-    if (velocities != nullptr && a_moves) velocities->touch(c.a);
-    if (velocities != nullptr && b_moves) velocities->touch(c.b);
   }
-  for (std::size_t k = 0; k < used_; ++k)
-    for (int l = lanes_[k]; l < kBatchLanes; ++l) empty_lane(batches_[k], l);
   // Cleared for the next group: only the bodies of this one were set.
   for (const SolverContact& c : contacts) {
     after_[static_cast<std::size_t>(c.a + 1)] = 0;
     after_[static_cast<std::size_t>(c.b + 1)] = 0;
   }
+  if (!pays() && !fill_always) return;
+  filled_ = true;
+  while (batches_.size() < used_) batches_.emplace_back();
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const int slot = slot_[i];
+    fill_lane(batches_[static_cast<std::size_t>(slot / kBatchLanes)], slot % kBatchLanes, static_cast<int>(i),
+              contacts[i], sb, dt, friction);
+  }
+  for (std::size_t k = 0; k < used_; ++k)
+    for (int l = lanes_[k]; l < kBatchLanes; ++l) empty_lane(batches_[k], l);
+}
+
+void ContactBatches::touch_bodies(BatchVelocities& velocities) const {
+  for (const ContactBatch& batch : all())
+    for (int l = 0; l < kBatchLanes; ++l) {
+      if (batch.push_a[l]) velocities.touch(batch.a[l]);
+      if (batch.push_b[l]) velocities.touch(batch.b[l]);
+    }
 }
 
 double ContactBatches::pass(BatchVelocities& velocities, double e, ImpulseCounters& counters, bool avx2) {
-  const std::span<ContactBatch> batches(batches_.data(), used_);
+  const std::span<ContactBatch> batches(batches_.data(), filled_ ? used_ : 0);
   return avx2 ? pass_avx2(batches, velocities, e, counters) : pass_baseline(batches, velocities, e, counters);
 }
 

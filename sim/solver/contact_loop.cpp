@@ -2,24 +2,28 @@
 
 #include <algorithm>
 #include <cassert>
-#include <vector>
 
 namespace boxpile {
 
 void contact_loop(ImpulseStep& step, std::span<SolverContact> contacts, ContactBatches* batches,
-                  BatchVelocities* velocities, std::vector<int>* order) {
+                  BatchVelocities* velocities) {
   SolverBodyArray& sb = step.resting;
   const int passes = step.settings().contact_passes;
   const double dt = step.dt();
   const bool accumulated = step.settings().accumulated_impulses;
   assert(passes <= kMaxSolverPasses);
   for (SolverContact& c : contacts) begin_resting_phase(c, sb.relative_velocity(c));
-  // solver.contact_batches: the contacts in batches of four that share no moving body. With
-  // accumulated impulses a batch is updated at once, on the velocities (contact_batches.hpp); the
-  // push-only impulses take the batches' order one contact at a time.
-  const bool batched = batches != nullptr;
-  if (batched) batches->build(contacts, sb, dt, step.friction(), accumulated ? velocities : nullptr);
-  if (batched && !accumulated) batches->order(*order);
+  // solver.contact_batches: the accumulated impulses of batches of four contacts that share no
+  // moving body, updated at once on the velocities (contact_batches.hpp), where the batches fill
+  // enough lanes to pay; a chain of contacts (a stack: each pair shares a box with the next) fills
+  // one lane a batch and runs one contact at a time. (Push-only impulses run one at a time: the
+  // batches' order is the search's for every body, so they would change nothing.)
+  bool batched = batches != nullptr && accumulated;
+  if (batched) {
+    batches->build(contacts, sb, dt, step.friction());
+    batched = batches->pays();
+    if (batched) batches->touch_bodies(*velocities);
+  }
   const bool avx2 = contact_batches_use_avx2();
   for (int pass = 0; pass < passes; ++pass) {
     // e = -1 would leave velocities unchanged; the ramp starts one step above it and ends at 0,
@@ -29,12 +33,12 @@ void contact_loop(ImpulseStep& step, std::span<SolverContact> contacts, ContactB
     // The residual of a pass is the largest approach met in it, each contact measured just
     // before its impulse (free: the velocity is needed anyway).
     double residual = 0.0;
-    if (batched && accumulated) {
+    if (batched) {
       residual = batches->pass(*velocities, e, step.counters(), avx2);
     } else {
       const std::size_t count = contacts.size();
       for (std::size_t q = 0; q < count; ++q) {
-        SolverContact& c = contacts[batched ? static_cast<std::size_t>((*order)[q]) : q];
+        SolverContact& c = contacts[q];
         const Vec3 u = sb.relative_velocity(c);
         residual = std::max(residual, allow_gap(c, 0.0, dt) - c.n.dot(u));
         // Ours asks u_n >= -e_k u_n(start) of the impulse accumulated over the phase; the lab
@@ -51,7 +55,7 @@ void contact_loop(ImpulseStep& step, std::span<SolverContact> contacts, ContactB
     step.stats().contact_residual[pass] = std::max(step.stats().contact_residual[pass], residual);
     step.stats().contact_passes_used = pass + 1;
   }
-  if (batched && accumulated) batches->finish(contacts);
+  if (batched) batches->finish(contacts);
 }
 
 }  // namespace boxpile

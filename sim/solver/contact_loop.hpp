@@ -13,11 +13,10 @@ namespace boxpile {
 // accumulated_impulses a projected Gauss-Seidel over the phase's impulses; without, the lab
 // text's push-only Newton-Coulomb impulses. Works on the compact bodies (step.resting), gathered
 // before and scattered after by the caller. With solver.contact_batches the caller gives
-// `batches` (the worker's, kept from step to step) and the contacts go in batches that share no
-// moving body; with accumulated impulses they then update `velocities` (gathered from the compact
-// bodies before and scattered back after by the caller), and the push-only impulses go in the
-// batches' order (`order`: the worker's scratch).
+// `batches` (the worker's, kept from step to step) and `velocities` (gathered from the compact
+// bodies before and scattered back after): the accumulated impulses then go in batches of four
+// contacts that share no moving body, where they fill enough lanes (ContactBatches::pays).
 void contact_loop(ImpulseStep& step, std::span<SolverContact> contacts, ContactBatches* batches = nullptr,
-                  BatchVelocities* velocities = nullptr, std::vector<int>* order = nullptr);
+                  BatchVelocities* velocities = nullptr);
 
 }  // namespace boxpile

@@ -59,8 +59,7 @@ ImpulseMethod::ImpulseMethod(const Scene& scene, std::size_t body_count)
     w.shock.active.reserve(body_count);
     w.recovery.reserve(storage);
     // A batch per four contacts: batches that fill fewer lanes grow the storage once.
-    w.batches.reserve(storage.contacts() / kBatchLanes, body_count);
-    w.order.reserve(storage.contacts());
+    w.batches.reserve(storage.contacts(), storage.contacts() / kBatchLanes, body_count);
   }
 }
 
@@ -174,7 +173,7 @@ void ImpulseMethod::step(StepContext& ctx) {
     // on the batches' own copy of the velocities.
     if (s.accumulated_impulses) batch_velocities_.gather(resting_bodies_, static_cast<int>(bodies.size()));
     for_each_island_group(ctx, [&](ImpulseStep& is, int begin, int end, Worker& w) {
-      contact_loop(is, contacts_of(is, begin, end), &w.batches, &batch_velocities_, &w.order);
+      contact_loop(is, contacts_of(is, begin, end), &w.batches, &batch_velocities_);
     });
     if (s.accumulated_impulses) batch_velocities_.scatter(resting_bodies_, bodies);
   } else {
@@ -332,8 +331,8 @@ ContactMethodRow impulse_method_row() {
       scene_flag<&Scene::solver, &SolverSettings::contact_batches>({.key = "contact_batches", .kind = Kind::Boolean,
         .what = "contact loop: the contacts regrouped into batches of four that share no moving body, a batch's "
                 "accumulated impulses computed at once on the velocities (AVX2 where the processor has it, the "
-                "same results without; push-only impulses take the batches' order); off: one contact at a time "
-                "in the contact search's order",
+                "same results without), where they fill enough lanes to pay; off: one contact at a time "
+                "in the contact search's order, as push-only impulses always are",
         .scene_key = "solver.contact_batches"}),
       {{.key = "collision_passes", .kind = Kind::Integer, .what = "passes of the collision loop", .min = 1,
         .max = kMaxSolverPasses, .scene_key = "solver.collision_passes"},

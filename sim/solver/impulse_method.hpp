@@ -50,7 +50,6 @@ class ImpulseMethod final : public ContactMethod {
     ShockPropagation::Worker shock;
     PenetrationRecovery::Worker recovery;
     ContactBatches batches;  // the contact loop's (solver.contact_batches)
-    std::vector<int> order;
   };
   // Runs stage(step, begin, end, worker) for every island [begin, end) of the contact set, on the
   // pool's threads; `step` is the worker's view of the step (its own counts and records).
