@@ -78,6 +78,25 @@ Tangle make_tangle(unsigned seed, int body_count, int contact_count) {
   return t;
 }
 
+// The tangle of `seed` (its size grows with it) with its resting phase begun, and its bodies as
+// the sequential loop and the batches see them.
+struct Started {
+  Tangle t;
+  int bodies = 0;
+  SolverBodyArray start;
+  BatchVelocities velocities;
+};
+
+Started start_tangle(unsigned seed) {
+  Started s;
+  s.t = make_tangle(seed, 3 + static_cast<int>(seed % 9), 5 + static_cast<int>(seed * 7 % 60));
+  s.bodies = static_cast<int>(s.t.bodies.size());
+  s.start.gather(s.t.bodies);
+  for (SolverContact& c : s.t.contacts) begin_resting_phase(c, s.start.relative_velocity(c));
+  s.velocities.gather(s.start, s.bodies);
+  return s;
+}
+
 bool same_counters(const ImpulseCounters& a, const ImpulseCounters& b) {
   return a.normal_impulses == b.normal_impulses && a.friction_evaluations == b.friction_evaluations &&
          a.sliding == b.sliding;
@@ -177,14 +196,12 @@ TEST_CASE("contact batches: four lanes give each contact's update alone in the s
   constexpr int kPasses = 10;
   for (const bool friction : {true, false}) {
     for (unsigned seed = 1; seed <= 20; ++seed) {
-      Tangle t = make_tangle(seed, 3 + static_cast<int>(seed % 9), 5 + static_cast<int>(seed * 7 % 60));
-      const int bodies = static_cast<int>(t.bodies.size());
       CAPTURE(seed, friction);
-      SolverBodyArray start;
-      start.gather(t.bodies);
-      for (SolverContact& c : t.contacts) begin_resting_phase(c, start.relative_velocity(c));
-      BatchVelocities start_velocities;
-      start_velocities.gather(start, bodies);
+      Started st = start_tangle(seed);
+      const Tangle& t = st.t;
+      const int bodies = st.bodies;
+      const SolverBodyArray& start = st.start;
+      const BatchVelocities& start_velocities = st.velocities;
 
       ContactBatches batches;
       batches.build(t.contacts, start, dt, friction, true);
@@ -253,14 +270,12 @@ TEST_CASE("contact batches: the same impulses as the sequential loop in the same
   constexpr double dt = 1.0 / 240.0;
   constexpr int kPasses = 10;
   for (unsigned seed = 1; seed <= 20; ++seed) {
-    Tangle t = make_tangle(seed, 3 + static_cast<int>(seed % 9), 5 + static_cast<int>(seed * 7 % 60));
-    const int bodies = static_cast<int>(t.bodies.size());
     CAPTURE(seed);
-    SolverBodyArray start;
-    start.gather(t.bodies);
-    for (SolverContact& c : t.contacts) begin_resting_phase(c, start.relative_velocity(c));
-    BatchVelocities velocities;
-    velocities.gather(start, bodies);
+    Started st = start_tangle(seed);
+    const Tangle& t = st.t;
+    const int bodies = st.bodies;
+    const SolverBodyArray& start = st.start;
+    BatchVelocities& velocities = st.velocities;
     ContactBatches batches;
     batches.build(t.contacts, start, dt, true, true);
     std::vector<int> order(t.contacts.size());

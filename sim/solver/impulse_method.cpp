@@ -168,14 +168,14 @@ void ImpulseMethod::step(StepContext& ctx) {
 
   // 4. Contact loop: every contact of the set, restitution ramped up to 0.
   resting_bodies_.gather(bodies);
-  if (s.contact_batches) {
-    // In batches (contact_batches.hpp), island group by island group; with accumulated impulses
-    // on the batches' own copy of the velocities.
-    if (s.accumulated_impulses) batch_velocities_.gather(resting_bodies_, static_cast<int>(bodies.size()));
+  if (s.contact_batches && s.accumulated_impulses) {
+    // In batches (contact_batches.hpp), island group by island group, on the batches' own copy of
+    // the velocities. (Push-only impulses run one at a time: batches would not change their order.)
+    batch_velocities_.gather(resting_bodies_, static_cast<int>(bodies.size()));
     for_each_island_group(ctx, [&](ImpulseStep& is, int begin, int end, Worker& w) {
       contact_loop(is, contacts_of(is, begin, end), &w.batches, &batch_velocities_);
     });
-    if (s.accumulated_impulses) batch_velocities_.scatter(resting_bodies_, bodies);
+    batch_velocities_.scatter(resting_bodies_, bodies);
   } else {
     for_each_island(ctx, [&](ImpulseStep& is, int begin, int end, Worker&) { contact_loop(is, contacts_of(is, begin, end)); });
   }
